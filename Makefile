@@ -1,0 +1,48 @@
+# The two commands of the README: `make book` and `make test`. Needs Python 3.11+ and Node 18+.
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(CURDIR)/$(VENV)/bin
+STAMP  := $(VENV)/.installed
+THEME_STAMP := theme/node_modules/.installed
+CHAPTERS := $(sort $(wildcard notebooks/[0-9][0-9]_*.py))
+
+# Kernels started by nbclient/nbmake/JupyterLab resolve `python` from PATH: make it the project's.
+export PATH := $(BIN):$(PATH)
+export MPLBACKEND := Agg
+export PYDEVD_DISABLE_FILE_VALIDATION := 1
+
+.PHONY: book test lab sync bench clean venv theme
+
+book: venv theme
+	$(BIN)/python scripts/build_site.py
+	@echo "The site is in _build/html (open _build/html/index.html)."
+
+test: venv theme
+	$(BIN)/python -m pytest tests
+	$(BIN)/python -m pytest --nbmake --nbmake-timeout=900 notebooks/[0-9][0-9]_*.ipynb
+
+lab: venv
+	$(BIN)/jupyter lab --notebook-dir=notebooks $(if $(filter 0,$(shell id -u)),--allow-root)
+
+# Refresh every chapter's notebook from its percent script, without outputs.
+sync: venv
+	$(BIN)/jupytext --sync $(CHAPTERS)
+	$(BIN)/jupyter nbconvert --clear-output --inplace --log-level=WARN $(CHAPTERS:.py=.ipynb)
+
+bench: venv
+	$(BIN)/python benchmarks/bench_sparc.py
+
+venv: $(STAMP)
+$(STAMP): environment.txt pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -r environment.txt
+	touch $(STAMP)
+
+theme: $(THEME_STAMP)
+$(THEME_STAMP): theme/package-lock.json theme/package.json
+	npm ci --prefix theme --no-audit --no-fund
+	touch $(THEME_STAMP)
+
+clean:
+	rm -rf _build .pytest_cache

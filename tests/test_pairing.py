@@ -1,0 +1,49 @@
+"""Every chapter is a Jupytext pair: the percent script and the notebook hold the same cells."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import jupytext
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+NOTEBOOKS = ROOT / "notebooks"
+SCRIPTS = sorted(NOTEBOOKS.glob("[0-9][0-9]_*.py"))
+IPYNBS = sorted(NOTEBOOKS.glob("*.ipynb"))
+
+
+def _cells(nb) -> list[tuple[str, str]]:
+    return [(c.cell_type, c.source.strip()) for c in nb.cells]
+
+
+def test_there_are_chapters():
+    assert SCRIPTS, "no chapter scripts found in notebooks/"
+
+
+@pytest.mark.parametrize("script", SCRIPTS, ids=lambda p: p.name)
+def test_script_has_its_notebook_in_sync(script: Path):
+    ipynb = script.with_suffix(".ipynb")
+    assert ipynb.exists(), f"{ipynb.name} is missing: run `make sync`"
+    from_script = jupytext.read(script)
+    from_notebook = jupytext.read(ipynb)
+    assert _cells(from_script) == _cells(from_notebook), (
+        f"{script.name} and {ipynb.name} differ: run `make sync` and commit both"
+    )
+
+
+@pytest.mark.parametrize("ipynb", IPYNBS, ids=lambda p: p.name)
+def test_notebook_has_its_script(ipynb: Path):
+    assert ipynb.with_suffix(".py").exists(), f"{ipynb.name} has no paired .py script"
+
+
+@pytest.mark.parametrize("ipynb", IPYNBS, ids=lambda p: p.name)
+def test_committed_notebook_has_no_outputs(ipynb: Path):
+    nb = jupytext.read(ipynb)
+    with_outputs = [i for i, c in enumerate(nb.cells) if c.cell_type == "code" and c.get("outputs")]
+    assert not with_outputs, f"{ipynb.name}: cells {with_outputs} carry outputs; the build executes a copy"
+
+
+def test_every_chapter_is_in_the_table_of_contents():
+    toc = (ROOT / "myst.yml").read_text()
+    for ipynb in IPYNBS:
+        assert f"notebooks/{ipynb.name}" in toc, f"{ipynb.name} is not listed in myst.yml"
