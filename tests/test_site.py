@@ -1,0 +1,401 @@
+"""The static site: built by scripts/build_site.py with the offline theme (theme/), read from disk.
+
+Two sites are checked: the book (myst.yml at the repository root, into _build/html) and a small
+fixture project (tests/fixtures/site, into _build/fixture/html) that exercises every element the
+theme renders. Each is rebuilt once per session if it is missing or older than its sources.
+"""
+from __future__ import annotations
+
+import base64
+import functools
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+from dataclasses import dataclass, field
+from html.parser import HTMLParser
+from pathlib import Path
+from urllib.parse import unquote, urlsplit
+
+import nbformat
+import pytest
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+BUILD_SCRIPT = ROOT / "scripts" / "build_site.py"
+FIXTURE = ROOT / "tests" / "fixtures" / "site"
+SITES = {
+    # name: (project folder, build folder; the site is BUILD/html, the executed notebooks BUILD/site-src)
+    "book": (ROOT, ROOT / "_build"),
+    "fixture": (FIXTURE, ROOT / "_build" / "fixture"),
+}
+IMAGE_TYPES = ("image/png", "image/jpeg", "image/gif", "image/svg+xml")
+REMOTE = re.compile(r"^(https?:)?//", re.I)
+
+
+# ------------------------------------------------------------------------------------ building --
+
+def toc_files(entries) -> list[str]:
+    out: list[str] = []
+    for e in entries or []:
+        if isinstance(e, dict):
+            if e.get("file"):
+                out.append(str(e["file"]).removeprefix("./"))
+            out += toc_files(e.get("children"))
+    return out
+
+
+def _newest_source(project: Path, files: list[str]) -> float:
+    paths = [project / "myst.yml", BUILD_SCRIPT, *(project / f for f in files)]
+    paths += [p for p in (ROOT / "theme").rglob("*") if "node_modules" not in p.parts and p.is_file()]
+    if project == ROOT:  # chapters run skilllib on the data: their outputs change with them
+        for folder in ("skilllib", "data", "images"):
+            paths += [p for p in (ROOT / folder).rglob("*") if p.is_file() and "__pycache__" not in p.parts]
+    return max(p.stat().st_mtime for p in paths if p.exists())
+
+
+_BUILT: dict[str, "Site | str"] = {}  # a site, or why it could not be built (not retried)
+
+
+def built_site(name: str) -> "Site":
+    """The site `name`, (re)built once per session with scripts/build_site.py when missing or stale."""
+    if name not in _BUILT:
+        try:
+            _BUILT[name] = _build(name)
+        except RuntimeError as err:
+            _BUILT[name] = str(err)
+    site = _BUILT[name]
+    if isinstance(site, str):
+        pytest.fail(site, pytrace=False)
+    return site
+
+
+def _build(name: str) -> "Site":
+    project, build_dir = SITES[name]
+    cfg = yaml.safe_load((project / "myst.yml").read_text(encoding="utf-8"))
+    files = toc_files(cfg["project"]["toc"])
+    missing = [f for f in files if not (project / f).exists()]
+    if missing:
+        raise RuntimeError(f"myst.yml ({name}) lists pages that do not exist: {missing}")
+    out = build_dir / "html"
+    stamp = out / "_static" / "pages.json"
+    if not stamp.exists() or stamp.stat().st_mtime < _newest_source(project, files):
+        if shutil.which("node") is None:
+            raise RuntimeError("node is not installed: the site cannot be built (Node 18+ is required)")
+        proc = subprocess.run(
+            [sys.executable, str(BUILD_SCRIPT), "--project", str(project), "--build-dir", str(build_dir)],
+            cwd=ROOT, capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=3600,
+        )
+        if proc.returncode != 0:
+            raise RuntimeError(f"building the {name} site failed:\n{proc.stdout[-3000:]}\n{proc.stderr[-3000:]}")
+    return Site(name, project, build_dir, out, cfg, files)
+
+
+class _Collector(HTMLParser):
+    def __init__(self) -> None:
+        super().__init__(convert_charrefs=True)
+        self.tags: list[tuple[str, dict]] = []
+        self.ids: set[str] = set()
+        self.stack: list[str] = []
+        self.figures: dict[str, list[tuple[str, dict]]] = {}  # figure id -> tags inside it
+        self._open_figures: list[str] = []
+
+    def handle_starttag(self, tag, attrs):
+        a = {k: (v or "") for k, v in attrs}
+        self.tags.append((tag, a))
+        if "id" in a:
+            self.ids.add(a["id"])
+        for fid in self._open_figures:
+            self.figures[fid].append((tag, a))
+        if tag == "figure":
+            fid = a.get("id", f"_anon{len(self.figures)}")
+            self.figures[fid] = []
+            self._open_figures.append(fid)
+
+    def handle_endtag(self, tag):
+        if tag == "figure" and self._open_figures:
+            self._open_figures.pop()
+
+
+@dataclass
+class Page:
+    file: str
+    url: str
+    title: str
+    download: str | None
+    path: Path
+    html: str = field(repr=False)
+    tags: list[tuple[str, dict]] = field(repr=False)
+    ids: set[str] = field(repr=False)
+    figures: dict[str, list[tuple[str, dict]]] = field(repr=False)
+
+    def attr_values(self, *names: str) -> list[tuple[str, str, str]]:
+        return [(t, n, a[n]) for t, a in self.tags for n in names if n in a]
+
+
+@dataclass
+class Site:
+    name: str
+    project: Path
+    build_dir: Path
+    out: Path
+    cfg: dict
+    files: list[str]
+
+    @functools.cached_property
+    def manifest(self) -> dict:
+        return json.loads((self.out / "_static" / "pages.json").read_text(encoding="utf-8"))
+
+    @functools.cached_property
+    def pages(self) -> list[Page]:
+        pages = []
+        for p in self.manifest["pages"]:
+            path = self.out / p["url"]
+            html = path.read_text(encoding="utf-8")
+            c = _Collector()
+            c.feed(html)
+            pages.append(Page(p["file"], p["url"], p["title"], p["download"], path, html, c.tags, c.ids, c.figures))
+        return pages
+
+    def page(self, file: str) -> Page:
+        return next(p for p in self.pages if p.file == file)
+
+    def executed(self, file: str):
+        return nbformat.read(self.build_dir / "site-src" / file, as_version=4)
+
+
+@pytest.fixture(scope="module", params=list(SITES))
+def site(request) -> Site:
+    return built_site(request.param)
+
+
+# ------------------------------------------------------------------------------------ the tests --
+
+def test_one_page_per_toc_entry(site):
+    assert [p["file"] for p in site.manifest["pages"]] == site.files
+    assert (site.out / "index.html").is_file()
+    assert site.pages[0].url == "index.html"
+    title = site.cfg["project"]["title"]
+    assert site.manifest["title"] == title
+    for page in site.pages:
+        assert page.path.is_file(), page
+        assert "<title>" in page.html and title in page.html, f"{page.url}: no site title"
+        assert "<h1>" in page.html, f"{page.url}: no page title"
+
+
+def test_sidebar_marks_the_current_page_and_links_prev_next(site):
+    urls = [p.url for p in site.pages]
+    for i, page in enumerate(site.pages):
+        toc_links = [a["href"] for t, a in page.tags if t == "a" and a.get("aria-current") == "page"]
+        assert toc_links == [page.url], f"{page.url}: current page not marked in the contents"
+        rel = {a.get("rel"): a["href"] for t, a in page.tags if t == "a" and a.get("rel") in ("prev", "next")}
+        assert rel.get("prev") == (urls[i - 1] if i else None), page.url
+        assert rel.get("next") == (urls[i + 1] if i + 1 < len(urls) else None), page.url
+
+
+def _image_outputs(nb) -> list[tuple[str, bytes]]:
+    found = []
+    for cell in nb.cells:
+        for out in cell.get("outputs", []) if cell.cell_type == "code" else []:
+            data = out.get("data", {})
+            for mime in IMAGE_TYPES:
+                if mime in data:
+                    value = data[mime]
+                    value = "".join(value) if isinstance(value, list) else value
+                    blob = value.encode() if mime == "image/svg+xml" else base64.b64decode(value)
+                    found.append((mime, blob))
+                    break
+    return found
+
+
+def test_notebook_pages_show_every_figure(site):
+    """Every image output of an executed chapter is an <img> on its page whose file has its bytes."""
+    for file in [f for f in site.files if f.endswith(".ipynb")]:
+        page = site.page(file)
+        shown = []
+        for tag, attr in page.tags:
+            if tag == "img":
+                target = page.path.parent / unquote(attr["src"])
+                assert target.is_file(), f"{page.url}: <img src={attr['src']}> has no file"
+                shown.append(target.read_bytes())
+        for mime, blob in _image_outputs(site.executed(file)):
+            ok = any(blob == s or (mime == "image/svg+xml" and blob.strip() == s.strip()) for s in shown)
+            assert ok, f"{page.url}: an {mime} output of {file} is not shown"
+
+
+def test_labelled_figure_cells_are_numbered_figures(site):
+    """A cell starting `#| label: fig-x` / `#| caption:` is <figure id=fig-x> with its image and caption."""
+    for file in [f for f in site.files if f.endswith(".ipynb")]:
+        page = site.page(file)
+        for cell in site.executed(file).cells:
+            m = re.match(r"\s*#\|\s*label:\s*(\S+)", cell.source) if cell.cell_type == "code" else None
+            if not m:
+                continue
+            label = m.group(1)
+            assert label in page.figures, f"{page.url}: no <figure id={label}>"
+            inside = [t for t, _ in page.figures[label]]
+            assert "figcaption" in inside, f"{page.url}: figure {label} has no caption"
+            if _image_outputs(nbformat.from_dict({"cells": [cell]})):
+                assert "img" in inside, f"{page.url}: figure {label} shows no image"
+            assert re.search(rf'<figure id="{re.escape(label)}"[^>]*>.*?class="caption-number">[^<]*\d', page.html, re.S), \
+                f"{page.url}: figure {label} is not numbered"
+
+
+def test_internal_links_and_cross_references_resolve(site):
+    by_url = {p.url: p for p in site.pages}
+    for page in site.pages:
+        for tag, name, value in page.attr_values("href", "src"):
+            parts = urlsplit(value)
+            if parts.scheme or value.startswith("//"):
+                continue
+            target = by_url.get(parts.path, page) if parts.path else page
+            if parts.path:
+                assert (page.path.parent / unquote(parts.path)).exists(), f"{page.url}: <{tag} {name}={value}> is missing"
+            if parts.fragment and parts.path in ("", *by_url):
+                assert unquote(parts.fragment) in target.ids, f"{page.url}: <{tag} {name}={value}>: no such anchor"
+
+
+def test_every_cross_reference_is_resolved(site):
+    """myst only warns about `[](#label)` with no target; the theme marks it, and this fails."""
+    for page in site.pages:
+        bad = re.findall(r'<span class="xref unresolved">(.*?)</span>', page.html)
+        assert not bad, f"{page.url} ({page.file}): unresolved cross-references {bad}"
+
+
+def test_no_remote_scripts_styles_fonts_or_images(site):
+    for page in site.pages:
+        for tag, name, value in page.attr_values("src", "href", "srcset", "poster", "data"):
+            if tag == "a":
+                continue  # links to the web are fine; what a page loads is not
+            assert not REMOTE.match(value.strip()), f"{page.url}: <{tag} {name}={value}> loads from the network"
+        assert not re.search(r"@import\s+url\(\s*['\"]?(https?:)?//", page.html), page.url
+    for css in site.out.rglob("*.css"):
+        for url in re.findall(r"url\(\s*['\"]?([^'\")]+)", css.read_text(encoding="utf-8")):
+            assert not REMOTE.match(url), f"{css}: url({url}) is remote"
+            if not url.startswith("data:"):
+                assert (css.parent / url.split("#")[0].split("?")[0]).is_file(), f"{css}: url({url}) is missing"
+
+
+def test_no_root_absolute_links(site):
+    for page in site.pages:
+        for tag, name, value in page.attr_values("src", "href", "action", "srcset"):
+            assert not (value.startswith("/") and not value.startswith("//")), \
+                f"{page.url}: <{tag} {name}={value}> is root-absolute: the site must open from the file system"
+
+
+def _search_data(site) -> dict:
+    js = (site.out / "_static" / "search-index.js").read_text(encoding="utf-8")
+    m = re.fullmatch(r"window\.BOOK_SEARCH = (.*);\s*", js, re.S)
+    assert m, "search-index.js does not set window.BOOK_SEARCH"
+    return json.loads(m.group(1))
+
+
+def test_search_index_covers_every_page(site):
+    data = _search_data(site)
+    stored = data["index"]["storedFields"].values()
+    indexed_pages = {s["url"].split("#")[0] for s in stored}
+    for page in site.pages:
+        assert page.url in indexed_pages, f"{page.url} is not in the search index"
+        assert '<script src="_static/search-index.js">' in page.html
+        assert 'id="search-input"' in page.html
+    assert data["index"]["documentCount"] >= len(site.pages)
+
+
+def test_notebook_download_links_resolve(site):
+    for file in site.files:
+        page = site.page(file)
+        links = [a["href"] for t, a in page.tags if t == "a" and "download" in a]
+        if not file.endswith(".ipynb"):
+            assert not links, f"{page.url}: only notebook pages have a download link"
+            continue
+        assert links == [page.download], f"{page.url}: expected one download link to {page.download}"
+        target = page.path.parent / links[0]
+        assert target.is_file() and target.suffix == ".ipynb", f"{page.url}: {links[0]} does not exist"
+        nb = nbformat.read(target, as_version=4)
+        source = nbformat.read(site.project / file, as_version=4)
+        assert len(nb.cells) == len(source.cells), f"{links[0]} is not the chapter {file}"
+
+
+def test_math_is_rendered_at_build_time(site):
+    pages_with_math = [p for p in site.pages if 'class="katex' in p.html]
+    sources = [(site.project / f).read_text(encoding="utf-8") for f in site.files]
+    if any("$" in s or "{math}" in s for s in sources):
+        assert pages_with_math, "the sources have math but no page has KaTeX output"
+    assert (site.out / "_static" / "katex" / "katex.min.css").is_file()
+
+
+# ---------------------------------------------------------------- the fixture's elements --
+
+def test_fixture_renders_every_element():
+    site = built_site("fixture")
+    index = site.page("index.md")
+    demo = site.page("notebooks/01_demo.ipynb")
+    second = site.page("notebooks/02_second.ipynb")
+    # numbered equation with its label, and a reference to it
+    assert 'id="eq-sparc"' in index.html and 'class="eq-number">(1)' in index.html
+    assert '<a class="xref" href="#eq-sparc">(1)</a>' in index.html
+    # chapter-numbered figure, referred to from another page
+    assert 'href="demo.html#fig-sine">Figure\u00a01.1</a>' in index.html
+    assert 'href="demo.html#fig-sine">Figure\u00a01.1</a>' in second.html
+    assert 'href="#fig-cos">Figure\u00a02.1</a>' in second.html
+    assert 'id="tbl-speeds"' in index.html and "Table\u00a01:" in index.html
+    # admonitions, footnotes, citation and its reference list
+    for kind in ("note", "warning", "tip"):
+        assert f'class="admonition {kind}"' in index.html
+    assert 'href="#fn-speed"' in index.html and 'id="fn-speed"' in index.html
+    assert 'href="#cite-balasubramanian2015"' in index.html and "On the analysis of movement smoothness" in index.html
+    # outputs: stdout, stderr, execute_result, pandas HTML, errors without ANSI codes, markdown
+    assert '<pre class="output stream stdout">hello from stdout' in demo.html
+    assert '<pre class="output stream stderr">a warning on stderr' in demo.html
+    assert '<pre class="output text">42</pre>' in demo.html
+    assert 'class="dataframe"' in demo.html
+    outputs = "".join(re.findall(r'<pre class="output[^"]*">(.*?)</pre>', second.html, re.S))
+    assert "ZeroDivisionError: division by zero" in outputs and "red text after ANSI" in outputs
+    assert "\x1b" not in second.html and "[31m" not in outputs and "[0m" not in outputs
+    assert '<pre class="output stream stderr">progress 3/3' in second.html
+    assert "<strong>markdown</strong>" in second.html
+    # outputs over mystmd's 25,000 characters are shown whole, in a scrolling box when tagged so
+    assert "line 2999\n" in second.html and 'class="outputs scroll"' in second.html
+    assert "<th>399</th>" in second.html
+    # remove-input hides the code, not the output
+    assert "input hidden, output shown" in second.html and "print('input hidden" not in second.html
+    # highlighted code, internal links made relative
+    assert 'class="hljs-keyword"' in demo.html
+    assert 'href="index.html">link to the landing page' in second.html
+
+
+def test_a_page_myst_cannot_read_fails_the_render(tmp_path):
+    """myst carries on past a broken page; the theme must not (non-zero exit, the page named)."""
+    site = built_site("fixture")
+    project = tmp_path / "broken"
+    shutil.copytree(site.build_dir / "site-src", project, ignore=shutil.ignore_patterns("_build"))
+    (project / "notebooks" / "02_second.ipynb").write_text('{"cells": [', encoding="utf-8")
+    myst = Path(sys.executable).parent / "myst"
+    proc = subprocess.run([str(myst), "build", "--html"], cwd=project, capture_output=True, text=True,
+                          stdin=subprocess.DEVNULL, env={**os.environ, "CI": "1", "PWD": str(project)},
+                          timeout=300)
+    assert proc.returncode != 0
+    assert "notebooks/02_second.ipynb" in proc.stdout + proc.stderr
+
+
+def test_a_failing_cell_stops_the_build_naming_chapter_and_cell(tmp_path):
+    project = tmp_path / "proj"
+    (project / "notebooks").mkdir(parents=True)
+    (project / "index.md").write_text("# Home\n\nA page.\n", encoding="utf-8")
+    nb = nbformat.v4.new_notebook()
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
+    nb.cells = [nbformat.v4.new_markdown_cell("# Broken"), nbformat.v4.new_code_cell("x = 1"),
+                nbformat.v4.new_code_cell("1 / 0")]
+    nbformat.write(nb, project / "notebooks" / "01_broken.ipynb")
+    (project / "myst.yml").write_text(yaml.safe_dump({
+        "version": 1,
+        "project": {"title": "Broken", "toc": [{"file": "index.md"}, {"file": "notebooks/01_broken.ipynb"}]},
+        "site": {"template": str(ROOT / "theme")},
+    }), encoding="utf-8")
+    proc = subprocess.run([sys.executable, str(BUILD_SCRIPT), "--project", str(project)],
+                          capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=600)
+    assert proc.returncode != 0
+    assert "notebooks/01_broken.ipynb: cell 3 (code cell 2) raised ZeroDivisionError: division by zero" in proc.stderr
+    assert not (project / "_build" / "html").exists()
