@@ -1,0 +1,350 @@
+"""skilllib.smoothness: published values, the SPARC authors' own code as oracle, invariances, errors.
+
+The oracle is monalysa 0.2.1 (Balasubramanian's package): ``sparc`` must agree with it to 1e-9 on every
+input it accepts and raise ValueError where it fails; ``sparc_many`` must give ``sparc``'s values.
+"""
+from __future__ import annotations
+
+import inspect
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
+from hypothesis.extra import numpy as hnp
+from monalysa.quality.smoothness import log_dimensionless_jerk as ldlj_authors
+from monalysa.quality.smoothness import sparc as sparc_authors
+
+import skilllib
+from skilllib import smoothness
+from skilllib.smoothness import (
+    SPARC_PARAMS,
+    ldlj,
+    ldlj_many,
+    minimum_jerk_speed,
+    nfft,
+    sparc,
+    sparc_many,
+    sparc_spectrum,
+)
+
+TOL = 1e-9
+FAST = settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+
+
+def authors(v, fs, **kw) -> float:
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("ignore")
+        return float(sparc_authors(np.asarray(v, dtype=float), fs, **kw)[0])
+
+
+def well_conditioned(v, fs, fc=10.0, amp_th=0.05, padlevel=4) -> bool:
+    """No bin <= fc lies within 1e-9 of the threshold: the band does not hinge on rounding, so two
+    different (correct) ways of computing the spectrum must select the same band."""
+    s = sparc_spectrum(v, fs, fc, amp_th, padlevel)
+    return bool(np.all(np.abs(s.Mf[: np.searchsorted(s.f, fc, "right")] - amp_th) > 1e-9))
+
+
+# --- profiles of every kind the oracle must agree on ---------------------------------------------
+
+def profile(kind: str, rng: np.random.Generator, fs: float) -> np.ndarray:
+    """A speed profile (m/s) at ``fs`` Hz: bell, overlapping submovements, noisy, cut at contact,
+    single sample."""
+    T = rng.uniform(0.3, 1.5)
+    t = np.arange(0, T, 1 / fs)
+    if kind == "single":
+        return np.array([rng.uniform(0.01, 2)])
+    if kind == "bell":
+        return minimum_jerk_speed(t, 0, T, rng.uniform(0.05, 0.5))
+    if kind == "submovements":  # two or three, overlapping
+        n = rng.integers(2, 4)
+        t0 = np.sort(rng.uniform(0, T / 2, n))
+        return minimum_jerk_speed(t[:, None], t0, T / 2, rng.uniform(0.05, 0.3, n)).sum(axis=1)
+    v = minimum_jerk_speed(t, 0, T, 0.3)
+    if kind == "noisy":
+        return np.abs(v + rng.normal(0, rng.uniform(0.001, 0.1), v.size))
+    if kind == "truncated":  # contact during the deceleration, speed still 25-90 % of its peak
+        cut = np.flatnonzero((t > T / 2) & (v < rng.uniform(0.25, 0.9) * v.max()))
+        return v[: max(cut[0], 1)] if cut.size else v
+    raise ValueError(kind)
+
+
+KINDS = ["bell", "submovements", "noisy", "truncated", "single"]
+PARAMS = [{}, {"fc": 20.0}, {"fc": 5.0, "amp_th": 0.1}, {"amp_th": 0.01}, {"padlevel": 2},
+          {"padlevel": 6, "fc": 3.0}, {"padlevel": 0}]
+
+
+@pytest.mark.parametrize("fs", [60.0, 100.0, 250.0, 13.7])
+@pytest.mark.parametrize("kw", PARAMS, ids=str)
+@pytest.mark.parametrize("kind", KINDS)
+def test_agrees_with_the_authors_code(kind, kw, fs):
+    rng = np.random.default_rng(abs(hash((kind, str(kw), fs))) % 2**32)
+    vs = [profile(kind, rng, fs) for _ in range(8)]
+    ref = np.array([authors(v, fs, **kw) for v in vs])
+    assert np.max(np.abs([sparc(v, fs, **kw) for v in vs] - ref)) < TOL
+    assert np.max(np.abs(sparc_many(vs, fs, **kw) - ref)) < TOL
+
+
+speeds = hnp.arrays(np.float64, st.integers(1, 300),
+                    elements=st.floats(0, 100, allow_subnormal=False))
+signed = hnp.arrays(np.float64, st.integers(1, 300),
+                    elements=st.floats(-100, 100, allow_subnormal=False))
+any_fs = st.floats(1.0, 2000.0)
+
+
+@FAST
+@given(v=st.one_of(speeds, signed), fs=any_fs, fc=st.floats(0.0, 100.0),
+       amp_th=st.floats(-0.1, 1.2), padlevel=st.integers(-2, 7))
+def test_agrees_with_the_authors_code_or_raises_valueerror(v, fs, fc, amp_th, padlevel):
+    kw = {"fc": fc, "amp_th": amp_th, "padlevel": padlevel}
+    try:
+        ref = authors(v, fs, **kw)
+    except (IndexError, ValueError, ZeroDivisionError):
+        with pytest.raises(ValueError):
+            sparc(v, fs, **kw)
+        return
+    assume(np.isfinite(ref))  # the authors' code returns NaN for an all-zero cropped profile
+    assert abs(sparc(v, fs, **kw) - ref) < TOL
+
+
+@FAST
+@given(vs=st.lists(st.one_of(speeds, signed), min_size=1, max_size=12), fs=any_fs,
+       fc=st.floats(0.5, 60.0), amp_th=st.floats(0.005, 0.6), padlevel=st.integers(0, 6))
+def test_sparc_many_equals_sparc(vs, fs, fc, amp_th, padlevel):
+    kw = {"fc": fc, "amp_th": amp_th, "padlevel": padlevel}
+    assume(all(np.any(v) for v in vs))
+    try:
+        one = [sparc(v, fs, **kw) for v in vs]
+    except ValueError:
+        with pytest.raises(ValueError):
+            sparc_many(vs, fs, **kw)
+        return
+    assume(all(well_conditioned(v, fs, **kw) for v in vs))
+    assert np.max(np.abs(sparc_many(vs, fs, **kw) - one)) < TOL
+
+
+def test_sparc_many_on_long_profiles_and_wide_bands_both_paths():
+    """Long profiles take the batched-FFT path, short ones the direct DFT; fc beyond Nyquist needs
+    the whole spectrum. A 2-D array is a valid sequence of equal-length profiles."""
+    rng = np.random.default_rng(3)
+    vs = [np.abs(rng.normal(size=n)) + 0.5 for n in (1, 2, 3, 31, 64, 65, 257, 700, 2000, 5000)]
+    vs += [rng.normal(size=n) for n in (5, 90, 700)]  # signed
+    for fs, fc in [(60.0, 10.0), (60.0, 45.0), (100.0, 1e6)]:
+        assert np.max(np.abs(sparc_many(vs, fs, fc=fc) - [sparc(v, fs, fc=fc) for v in vs])) < TOL
+    block = np.abs(rng.normal(size=(7, 40)))
+    assert np.max(np.abs(sparc_many(block, 60.0) - [sparc(v, 60.0) for v in block])) < TOL
+    assert sparc_many([], 60.0).shape == (0,)
+
+
+def test_direct_dft_and_fft_give_the_same_power(monkeypatch):
+    rng = np.random.default_rng(4)
+    P = np.abs(rng.normal(size=(9, 75)))
+    P[3] -= 1.0  # one signed row: its peak needs the whole spectrum
+    signed_rows = (P < 0).any(axis=1)
+    monkeypatch.setattr(smoothness, "_DFT_FACTOR", np.inf)
+    a2, p2 = smoothness._power(P, 2048, 342, signed_rows)
+    monkeypatch.setattr(smoothness, "_DFT_FACTOR", 0.0)
+    b2, q2 = smoothness._power(P, 2048, 342, signed_rows)
+    assert np.allclose(a2, b2, rtol=1e-12, atol=1e-12 * p2.max())
+    assert np.allclose(p2, q2, rtol=1e-12)
+
+
+# --- published values ----------------------------------------------------------------------------
+
+def test_published_values():
+    t = np.arange(-1, 1, 0.01)
+    gauss = np.exp(-5 * t**2)
+    assert round(sparc(gauss, fs=100.0), 5) == -1.41403
+    assert round(ldlj(gauss, fs=100.0), 5) == -5.81636
+    assert round(np.exp(-ldlj(gauss, fs=100.0)), 5) == 335.74684  # |DLJ|
+    mj = minimum_jerk_speed(np.arange(0, 1, 0.01))
+    assert abs(sparc(mj, fs=100.0) - (-1.4058293244214655)) < 1e-12
+
+
+# --- invariances ---------------------------------------------------------------------------------
+
+nonneg = hnp.arrays(np.float64, st.integers(2, 200), elements=st.floats(0, 10, allow_subnormal=False))
+
+
+@FAST
+@given(v=nonneg, scale=st.floats(1e-3, 1e3), j=st.integers(-20, 20))
+def test_amplitude_invariance(v, scale, j):
+    assume(np.any(v))
+    s = sparc(v, 60.0)
+    assert sparc(v * 2.0**j, 60.0) == s  # exact: scaling by 2**j commutes with rounding
+    assume(well_conditioned(v, 60.0))
+    assert abs(sparc(v * scale, 60.0) - s) < TOL
+
+
+@FAST
+@given(v=st.one_of(speeds, signed), fs=any_fs, fc=st.floats(0.5, 50), amp_th=st.floats(0.001, 0.9),
+       padlevel=st.integers(0, 7))
+def test_sparc_is_at_most_minus_one_or_zero_for_a_one_bin_band(v, fs, fc, amp_th, padlevel):
+    try:
+        s = sparc_spectrum(v, fs, fc, amp_th, padlevel)
+    except ValueError:
+        return
+    if s.f_sel.size == 1:
+        assert s.sparc == 0.0  # empty arc, as the authors' code
+    else:
+        assert s.sparc <= -1 + 1e-12
+
+
+@FAST
+@given(v=nonneg, fs=st.floats(1.0, 500.0), amp_th=st.floats(0.001, 0.7), padlevel=st.integers(3, 7))
+def test_speeds_sampled_finely_enough_give_at_most_minus_one(v, fs, amp_th, padlevel):
+    """For v >= 0 with padlevel >= 3 the band holds at least two bins once fs / nfft <= fc."""
+    assume(np.any(v) and fs / nfft(v.size, padlevel) <= 10.0)
+    assert sparc(v, fs, amp_th=amp_th, padlevel=padlevel) <= -1 + 1e-12
+
+
+def test_single_sample_gives_minus_one_and_a_one_bin_band_gives_zero():
+    assert abs(sparc([0.3], 60.0) + 1) < 1e-12
+    # grid step fs / nfft = 1000 / 16 Hz > fc: the band is the DC bin alone, as in the authors' code
+    assert sparc([0.3], 1000.0) == 0.0 == authors([0.3], 1000.0)
+
+
+@FAST
+@given(v=nonneg, fs=st.floats(10.0, 500.0), j=st.integers(-6, 6))
+def test_time_stretching_exact(v, fs, j):
+    """Stretching time by 2**j (the same samples at fs / 2**j, cut-off fc / 2**j) changes nothing."""
+    assume(np.any(v))
+    c = 2.0**j
+    assert sparc(v, fs / c, fc=10.0 / c) == sparc(v, fs, fc=10.0)
+
+
+@pytest.mark.parametrize("fs", [60.0, 100.0])
+@pytest.mark.parametrize("T", [0.5, 0.8, 1.3])
+def test_time_stretching_resampled(T, fs):
+    """The same movement 2 or 4 times longer at the same fs (N and nfft scale together): equal up to
+    the sampling of the profile (< 1e-4), not exactly: the samples are different."""
+    s = [sparc(minimum_jerk_speed(np.arange(0, c * T, 1 / fs), 0, c * T), fs) for c in (1, 2, 4)]
+    assert abs(s[1] - s[0]) < 1e-4 and abs(s[2] - s[0]) < 1e-4
+
+
+def test_submovements_drifting_apart_lower_sparc():
+    t = np.arange(0, 3, 1 / 60)
+    s = [sparc(minimum_jerk_speed(t[:, None], [0, d], 0.6, 0.2).sum(axis=1), 60.0)
+         for d in (0.0, 0.2, 0.4, 0.6, 0.8)]
+    assert np.all(np.diff(s) < 0)
+
+
+# --- the spectrum companion ----------------------------------------------------------------------
+
+def test_spectrum_companion():
+    v = minimum_jerk_speed(np.arange(0, 0.8, 1 / 60), 0, 1.0)  # cut at contact, 80 % of the way
+    s = sparc_spectrum(v, 60.0)
+    assert s.sparc == sparc(v, 60.0)
+    assert s.nfft == nfft(v.size) == s.f.size == s.Mf.size
+    assert s.Mf.max() == 1.0 and s.f_sel[0] == 0.0 and s.f_sel[-1] == s.cutoff <= s.fc
+    assert s.Mf_sel[-1] >= s.amp_th
+    beyond = (s.f > s.cutoff) & (s.f <= s.fc)
+    assert np.all(s.Mf[beyond] < s.amp_th)
+    assert np.array_equal(s.Mf_sel, s.Mf[: s.Mf_sel.size])
+
+
+def test_nfft_is_the_authors_formula():
+    for p in (-2, 0, 4, 4.5, 7):
+        for n in range(1, 3000):
+            theirs = int(pow(2, np.ceil(np.log2(n)) + p))
+            if theirs < 1:  # np.fft.fft(v, 0) fails in their code
+                with pytest.raises(ValueError, match="nfft"):
+                    nfft(n, p)
+            else:
+                assert nfft(n, p) == theirs
+
+
+def test_book_parameters_are_the_defaults():
+    defaults = {k: p.default for k, p in inspect.signature(sparc).parameters.items() if k in SPARC_PARAMS}
+    assert defaults == dict(SPARC_PARAMS) == {"fc": 10.0, "amp_th": 0.05, "padlevel": 4}
+    assert skilllib.sparc is sparc
+
+
+def test_minimum_jerk_speed():
+    t = np.linspace(-0.5, 2.5, 30001)
+    v = minimum_jerk_speed(t, t0=0.5, T=1.5, D=0.3)
+    assert abs(v.max() - 1.875 * 0.3 / 1.5) < 1e-6
+    assert abs(t[v.argmax()] - 1.25) < 1e-3
+    assert abs(np.sum(v) * (t[1] - t[0]) - 0.3) < 1e-6  # travels D
+    assert np.all(v[(t < 0.5) | (t > 2.0)] == 0)
+
+
+# --- LDLJ ----------------------------------------------------------------------------------------
+
+@FAST
+@given(v=hnp.arrays(np.float64, st.integers(3, 300), elements=st.floats(0, 10, allow_subnormal=False)),
+       fs=any_fs)
+def test_ldlj_agrees_with_the_authors_code(v, fs):
+    assume(np.any(v) and np.any(np.diff(v, 2)))
+    with np.errstate(all="ignore"):
+        ref = ldlj_authors(v, fs)
+    assume(np.isfinite(ref))  # their code under- or overflows for extreme values (we scale by v_peak)
+    assert abs(ldlj(v, fs) - ref) < TOL * max(1, abs(ref))
+    assert abs(ldlj_many([v, v[::-1]], fs)[0] - ref) < TOL * max(1, abs(ref))
+
+
+def test_ldlj_many_equals_ldlj_and_constant_speed_is_infinitely_smooth():
+    rng = np.random.default_rng(5)
+    vs = [np.abs(rng.normal(size=n)) for n in rng.integers(3, 200, 50)] + [np.ones(7)]
+    many = ldlj_many(vs, 60.0)
+    assert np.allclose(many, [ldlj(v, 60.0) for v in vs], rtol=1e-12, atol=0)
+    assert many[-1] == np.inf == ldlj(np.ones(7), 60.0)
+
+
+def test_ldlj_collapses_with_noise_sparc_does_not():
+    rng = np.random.default_rng(6)
+    v = minimum_jerk_speed(np.arange(0, 1, 1 / 60), 0, 1, 0.3)
+    noisy = np.abs(v + rng.normal(0, 0.01 * v.max(), v.size))  # 1 % of peak speed
+    assert abs(sparc(noisy, 60.0) - sparc(v, 60.0)) < 0.05
+    assert ldlj(noisy, 60.0) - ldlj(v, 60.0) < -1.0
+
+
+# --- bad input -----------------------------------------------------------------------------------
+
+BAD = [([], "empty"), ([0.1, np.nan], "NaN"), ([0.1, np.inf], "infinite"), (np.ones((3, 2)), "1-D"),
+       (np.zeros(5), "zero everywhere"), (["a", "b"], "numbers")]
+
+
+@pytest.mark.parametrize("v, words", BAD)
+@pytest.mark.parametrize("fn", [sparc, sparc_spectrum, ldlj])
+def test_bad_speed_is_named(fn, v, words):
+    with pytest.raises(ValueError, match=words):
+        fn(v, 60.0)
+
+
+@pytest.mark.parametrize("fs", [0.0, -60.0, np.nan, np.inf])
+@pytest.mark.parametrize("fn", [sparc, ldlj, sparc_many, ldlj_many])
+def test_bad_fs(fn, fs):
+    v = minimum_jerk_speed(np.linspace(0, 1, 40))
+    with pytest.raises(ValueError, match="fs must be"):
+        fn([v] if fn in (sparc_many, ldlj_many) else v, fs)
+
+
+def test_bad_parameters_and_no_band():
+    v = minimum_jerk_speed(np.linspace(0, 1, 40))
+    with pytest.raises(ValueError, match="fc must be"):
+        sparc(v, 60.0, fc=-1.0)
+    with pytest.raises(ValueError, match="amp_th must be"):
+        sparc(v, 60.0, amp_th=np.nan)
+    with pytest.raises(ValueError, match="no spectral magnitude at or above amp_th"):
+        sparc(v, 60.0, amp_th=1.5)
+    with pytest.raises(ValueError, match="at least 3"):
+        ldlj([0.1, 0.2], 60.0)
+
+
+@pytest.mark.parametrize("v, words", BAD[:-1] + [([[0.1], [0.2]], "1-D"), (0.3, "1-D")])
+def test_sparc_many_names_the_bad_profile(v, words, monkeypatch):
+    monkeypatch.setattr(smoothness, "_CHUNK", 4)  # the index must count across blocks
+    good = minimum_jerk_speed(np.linspace(0, 1, 40))
+    vs = [good] * 9 + [v] + [good] * 3
+    for fn in (sparc_many, ldlj_many):
+        with pytest.raises(ValueError, match=rf"speeds\[9\].*{words}"):
+            fn(vs, 60.0)
+    with pytest.raises(ValueError, match=r"speeds\[2\].*no spectral magnitude"):
+        sparc_many([good, good, -np.ones(4) * (np.arange(4) % 2 - 0.5)], 60.0, fc=1.0, amp_th=0.9)
+    cropped = [0.0, 0.0, 0.0, 0.0, 1.0]  # padlevel -1: nfft = 4 < N, np.fft.fft keeps the zeros only
+    with pytest.raises(ValueError, match="zero"):
+        sparc(cropped, 60.0, padlevel=-1)
+    with pytest.raises(ValueError, match=r"speeds\[1\] is zero over its first nfft = 4"):
+        sparc_many([good[:5], cropped], 60.0, padlevel=-1)
