@@ -200,7 +200,7 @@ class PrototypeResult:
         plain Python ints/floats/strings, JSON-ready."""
         clusters = []
         for c in range(self.k):
-            p = self.prototypes.loc[c]
+            p = {col: self.prototypes.at[c, col] for col in self.prototypes.columns}  # keeps each dtype
             clusters.append({
                 "id": c, "size": int(self.sizes[c]),
                 "centre": {"pv": float(self.centres.at[c, "pv"]), "sparc": float(self.centres.at[c, "sparc"])},

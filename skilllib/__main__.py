@@ -1,0 +1,74 @@
+"""``python -m skilllib run``: the book's pipeline on the synthetic cohort or on your recordings.
+
+Exit status: 0 on success; 2 for a file that cannot be read or a bad option (one line on stderr,
+no traceback); 3 when the run finished but too few trials were selected to find prototypes.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Sequence
+
+from .data import DataFormatError
+from .prototypes import DEFAULT_K
+from .robots import ROBOT_NAMES
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="python -m skilllib",
+                                description="Smoothness-based prototypes and their transfer to a robot arm.")
+    sub = p.add_subparsers(dest="command", required=True)
+    r = sub.add_parser("run", help="run the whole pipeline and write results.json and figures",
+                       description="Read recordings (CSV: participant, trial, t, x, y, z, contact; s and m), "
+                                   "compute features, find prototypes, transfer them to a robot arm.")
+    r.add_argument("--data", metavar="FILE", help="recordings CSV (default: the book's synthetic cohort)")
+    r.add_argument("--out", metavar="DIR", required=True, help="folder for results.json and the figures")
+    r.add_argument("--k", type=int, default=DEFAULT_K, help=f"number of clusters (default {DEFAULT_K})")
+    r.add_argument("--robot", default="simple6", choices=ROBOT_NAMES, help="robot arm (default simple6)")
+    r.add_argument("--qd-max", type=float, nargs="+", metavar="RAD_S",
+                   help="joint velocity limits in rad/s: one for all joints or one per joint "
+                        "(default: the robot's)")
+    r.add_argument("--scaling", choices=("raw", "standard"), default="raw",
+                   help="features as they are (the paper) or standardised before K-means")
+    r.add_argument("--seed", type=int, default=0, help="random_state of K-means (default 0)")
+    r.add_argument("--no-figures", action="store_true", help="write results.json only")
+    r.add_argument("--quiet", action="store_true", help="no progress bars")
+    r.add_argument("--debug", action="store_true", help="show the traceback of an unexpected error")
+    return p
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    from tqdm.auto import tqdm
+
+    from .pipeline import run, summary_lines
+
+    def progress(items, desc):
+        return tqdm(items, desc=desc, unit=" trial" if desc == "features" else " prototype",
+                    disable=args.quiet, leave=False, file=sys.stderr)
+
+    qd_max = None if args.qd_max is None else (args.qd_max[0] if len(args.qd_max) == 1 else args.qd_max)
+    try:
+        result = run(args.data, args.out, k=args.k, robot=args.robot, qd_max=qd_max, scaling=args.scaling,
+                     random_state=args.seed, progress=progress, write_figures=not args.no_figures)
+    except DataFormatError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    except (ValueError, OSError) as e:
+        if args.debug:
+            raise
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    except Exception as e:  # an unexpected failure: one line, the traceback only on request
+        if args.debug:
+            raise
+        print(f"error: unexpected {type(e).__name__}: {e} (run again with --debug for the traceback)",
+              file=sys.stderr)
+        return 1
+    print("\n".join(summary_lines(result)))
+    print(f"wrote {args.out}/results.json" + ("" if args.no_figures else " and the figures"))
+    return 0 if result.prototypes is not None else 3
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,214 @@
+"""The whole pipeline of the paper on one recordings file: ``python -m skilllib run``.
+
+Steps (each a skilllib function the chapters also call): read and validate the recordings
+(:mod:`skilllib.data`); segment every trial and compute its features, status and reason
+(:mod:`skilllib.features`); silhouette sweep and K-means prototypes on the selected trials' (PV, SPARC)
+tuples (:mod:`skilllib.prototypes`); joint velocities of every prototype on a robot arm, feasibility
+and time scaling (:mod:`skilllib.transfer`). :func:`run` returns the results dictionary that is
+written to ``results.json`` (schema in README) and writes the figures beside it.
+"""
+from __future__ import annotations
+
+import json
+import math
+import re
+import warnings
+from collections import Counter
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable, Sequence
+
+import numpy as np
+import pandas as pd
+
+from . import prototypes as pt
+from .data import Recordings, read_recordings
+from .features import CONTACT_WINDOW, segment, select, trial_features
+from .robots import get_robot
+from .smoothness import SPARC_PARAMS
+from .transfer import TransferResult, transfer, transfer_summary
+
+#: The committed synthetic cohort (default input).
+REPO_ROOT = Path(__file__).resolve().parents[1]
+DEFAULT_DATA = REPO_ROOT / "data" / "cohort.csv"
+
+#: Fewest selected trials the clustering step accepts (K-means with k = 2 and a silhouette need 3).
+MIN_SELECTED = 3
+
+Progress = Callable[[Sequence[Any], str], Any]
+
+
+def _no_progress(items: Sequence[Any], desc: str) -> Sequence[Any]:
+    return items
+
+
+@dataclass
+class PipelineRun:
+    """Everything one run computed: the results dictionary and the objects behind it."""
+
+    results: dict[str, Any]
+    recordings: Recordings
+    features: pd.DataFrame
+    sweep: pt.SilhouetteSweep | None = None
+    prototypes: pt.PrototypeResult | None = None
+    transfers: list[TransferResult] = field(default_factory=list)
+    profiles: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
+    messages: list[str] = field(default_factory=list)
+
+
+def _plain(v: Any) -> Any:
+    """A JSON-ready scalar: numpy types unwrapped, NaN/inf and pandas NA as None."""
+    if v is None or v is pd.NA:
+        return None
+    if isinstance(v, np.generic):
+        v = v.item()
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    return v
+
+
+def _display_path(path: Path, given: str | Path | None) -> str:
+    """The data path for results.json: as given, or relative to the repo for the default cohort."""
+    if given is not None:
+        return str(given)
+    return path.relative_to(REPO_ROOT).as_posix()
+
+
+def trials_section(features: pd.DataFrame) -> list[dict[str, Any]]:
+    """One results.json entry per input trial: ids, status, reason and features (null when invalid)."""
+    cols = ["participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc", "ldlj"]
+    out = []
+    for rec in features[cols].to_dict(orient="records"):
+        entry = {c: _plain(rec[c]) for c in cols}
+        if entry["status"] == "selected":
+            entry["reason"] = None
+        out.append(entry)
+    return out
+
+
+def choose_k(requested: int, sweep: pt.SilhouetteSweep) -> tuple[int, str | None]:
+    """The k to use: ``requested`` if the sweep reached it, else the largest k the data allow."""
+    largest = int(sweep.ks[-1])
+    if requested <= largest:
+        return requested, None
+    return largest, (f"k = {requested} needs more distinct selected trials than there are; "
+                     f"using k = {largest}, the largest the data allow")
+
+
+def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int = pt.DEFAULT_K,
+        robot: str = "simple6", qd_max: Sequence[float] | float | None = None, scaling: str = "raw",
+        random_state: int = 0, progress: Progress = _no_progress, write_figures: bool = True) -> PipelineRun:
+    """Run the pipeline on ``data`` (default: the committed synthetic cohort) and write ``out``.
+
+    ``k``: clusters (the paper: 6), reduced with a message when the selected trials allow fewer;
+    ``robot``: a name of :func:`skilllib.robots.get_robot`; ``qd_max``: joint velocity limits in
+    rad/s (one for all joints or one per joint; default: the robot's); ``scaling``: "raw" (the paper)
+    or "standard"; ``progress(items, description)`` wraps the long loops (e.g. tqdm).
+    Raises :class:`skilllib.data.DataFormatError` for a file that cannot be read and ``ValueError``
+    for bad options. With fewer than :data:`MIN_SELECTED` selected trials the clustering and transfer
+    are skipped, said in ``messages`` and ``results["messages"]``.
+    """
+    path = Path(data) if data is not None else DEFAULT_DATA
+    setup = get_robot(robot)  # validates the name before the long steps
+    limits = setup.qd_limits if qd_max is None else qd_max
+    if k < 2:
+        raise ValueError(f"k must be at least 2, got {k}")
+
+    recordings = read_recordings(path)
+    features = trial_features(recordings, sparc_params=dict(SPARC_PARAMS), progress=progress)
+    selected = select(features)
+    results: dict[str, Any] = {
+        "dataset": {"path": _display_path(path, data), "n_trials": len(features),
+                    "n_participants": int(features["participant"].nunique()), "fs": float(recordings.fs)},
+        "sparc_params": {key: float(v) for key, v in SPARC_PARAMS.items()},
+        "contact_speed_window": list(CONTACT_WINDOW),
+        "trials": trials_section(features),
+        "n_selected": len(selected),
+    }
+    result = PipelineRun(results=results, recordings=recordings, features=features)
+
+    if len(selected) < MIN_SELECTED:
+        result.messages.append(f"only {len(selected)} selected trial(s): clustering needs at least "
+                               f"{MIN_SELECTED}; no prototypes and no transfer")
+    else:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            sweep = pt.silhouette_sweep(selected, scaling=scaling, random_state=random_state)
+        result.messages += [str(w.message) for w in caught if issubclass(w.category, UserWarning)]
+        k_used, note = choose_k(k, sweep)
+        if note:
+            result.messages.append(note)
+        fit = sweep.results[k_used]
+        result.sweep, result.prototypes = sweep, fit
+        results["silhouette"] = sweep.to_dict()
+        results["silhouette_valid_k"] = sweep.valid_ks()
+        results["k"] = k_used
+        results["scaling"] = scaling
+        results["clusters"] = fit.to_dict()["clusters"]
+        for c in progress(list(range(k_used)), "transfer"):
+            seg = segment(recordings, _plain(fit.prototypes.at[c, "participant"]),
+                          _plain(fit.prototypes.at[c, "trial"]))
+            result.profiles.append((seg.t - seg.t[0], seg.speed))
+            result.transfers.append(transfer(setup.robot, seg.t - seg.t[0], seg.pos, seg.vel, q0=setup.q0,
+                                             qd_limits=limits, cluster=c))
+        results["transfer"] = transfer_summary(result.transfers)
+    results["messages"] = result.messages
+    if out is not None:
+        out = Path(out)
+        out.mkdir(parents=True, exist_ok=True)
+        if write_figures:
+            results["figures"] = _write_figures(result, out, setup.robot)
+        (out / "results.json").write_text(json.dumps(results, indent=1, allow_nan=False) + "\n")
+    return result
+
+
+def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
+    """Write every figure of the pipeline (PNG and SVG) to ``out``; return their file names."""
+    from . import figures as fg  # figures imports matplotlib; only needed here
+
+    written = []
+
+    def keep(fig, name: str) -> None:
+        written.extend(p.name for p in fg.save(fig, out, name))
+        fg.plt.close(fig)
+
+    keep(fg.plot_feature_overview(run_.features), "features")
+    if run_.prototypes is not None:
+        keep(fg.plot_silhouette_sweep(run_.sweep, chosen_k=run_.prototypes.k), "silhouette_sweep")
+        keep(fg.plot_silhouettes(run_.prototypes), "silhouettes_k")
+        keep(fg.plot_clusters(run_.prototypes), "clusters_pv_sparc")
+        keep(fg.plot_prototype_profiles(run_.profiles, run_.prototypes.prototypes), "prototype_speed_profiles")
+        keep(fg.plot_joint_velocities(run_.transfers), "joint_velocities")
+    return written
+
+
+def summary_lines(run_: PipelineRun) -> list[str]:
+    """A short human summary of a run: counts, commonest reasons, k, prototypes, feasibility."""
+    f = run_.features
+    counts = f["status"].value_counts()
+    lines = [f"trials read: {len(f)} from {run_.results['dataset']['n_participants']} participant(s) "
+             f"at {run_.recordings.fs:.4g} Hz",
+             f"selected: {counts.get('selected', 0)}, excluded: {counts.get('excluded', 0)}, "
+             f"invalid: {counts.get('invalid', 0)}"]
+    for status in ("invalid", "excluded"):
+        reasons = Counter(_reason_kind(r) for r in f.loc[f["status"] == status, "reason"])
+        if reasons:
+            top = "; ".join(f"{n} x {r}" for r, n in reasons.most_common(3))
+            lines.append(f"  commonest {status} reasons: {top}")
+    if run_.prototypes is not None:
+        fit = run_.prototypes
+        lines.append(f"k = {fit.k} clusters ({fit.scaling} features), average silhouette {fit.silhouette:.3f}")
+        for c, tr in zip(range(fit.k), run_.transfers):
+            p = {col: fit.prototypes.at[c, col] for col in fit.prototypes.columns}
+            verdict = "feasible" if tr.feasible else (
+                f"needs time scaling x{tr.time_scale:.2f}" if not tr.flags else f"{len(tr.flags)} flag(s)")
+            lines.append(f"  cluster {c}: size {fit.sizes[c]}, prototype participant {p['participant']} trial "
+                         f"{p['trial']} (PV {p['pv']:.2f} m/s, SPARC {p['sparc']:.2f}); "
+                         f"peak |qd| {np.nanmax(tr.peak_abs_qd):.2f} rad/s, {verdict}")
+    lines += [f"note: {m}" for m in run_.messages]
+    return lines
+
+
+def _reason_kind(reason: str) -> str:
+    """A reason without its numbers, so that like reasons are counted together."""
+    return re.sub(r"[-+]?\d+(\.\d+)?(e[-+]?\d+)?", "N", str(reason).split(":")[0]).strip()

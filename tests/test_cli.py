@@ -1,0 +1,225 @@
+"""`python -m skilllib run`: the whole pipeline, its results.json and its handling of broken input.
+
+Each broken-input case writes its own small file; file-level problems must stop the run with exit
+status 2 and one line on stderr (no traceback), trial-level problems must mark just that trial invalid.
+"""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from skilllib.__main__ import main
+from skilllib.cohort import CohortModel, generate_cohort
+from skilllib.data import write_recordings
+
+ROOT = Path(__file__).resolve().parents[1]
+TRIAL_KEYS = {"participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc", "ldlj"}
+
+
+@pytest.fixture(scope="module")
+def small_frame() -> pd.DataFrame:
+    """4 participants x 12 trials sampled at 100 Hz (not the cohort's 60 Hz)."""
+    return generate_cohort(7, CohortModel(n_participants=4, n_trials=12, fs=100.0)).frame
+
+
+def _write(df: pd.DataFrame, path: Path) -> Path:
+    write_recordings(df, path)
+    return path
+
+
+def _run(capsys, *args: str) -> tuple[int, str, str]:
+    code = main(["run", "--quiet", *args])
+    cap = capsys.readouterr()
+    return code, cap.out, cap.err
+
+
+def _results(out: Path) -> dict:
+    return json.loads((out / "results.json").read_text())
+
+
+def _one_line_error(err: str, *needles: str) -> None:
+    lines = [ln for ln in err.strip().splitlines() if ln]
+    assert len(lines) == 1, f"expected one error line, got: {err!r}"
+    assert lines[0].startswith("error: ")
+    assert "Traceback" not in err
+    for n in needles:
+        assert n.lower() in lines[0].lower(), f"{n!r} not in {lines[0]!r}"
+
+
+# --- a good small file at another sampling rate ------------------------------------------------------
+
+def test_small_file_at_100_hz(tmp_path, capsys, small_frame):
+    data = _write(small_frame, tmp_path / "rec.csv")
+    code, out, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"), "--no-figures")
+    assert code == 0, err
+    res = _results(tmp_path / "o")
+    assert res["dataset"]["fs"] == pytest.approx(100.0, rel=1e-6)
+    assert res["dataset"]["n_trials"] == 48 and res["dataset"]["n_participants"] == 4
+    assert res["dataset"]["path"] == str(data)
+    assert len(res["trials"]) == 48
+    assert all(set(t) == TRIAL_KEYS for t in res["trials"])
+    n_sel = sum(t["status"] == "selected" for t in res["trials"])
+    assert res["n_selected"] == n_sel
+    assert sum(c["size"] for c in res["clusters"]) == n_sel
+    assert "trials read: 48" in out and "selected:" in out
+
+
+def test_too_few_trials_for_k_adapts_with_a_message(tmp_path, capsys, small_frame):
+    few = small_frame[small_frame["participant"] == small_frame["participant"].iloc[0]]
+    data = _write(few, tmp_path / "few.csv")
+    code, out, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"), "--k", "40",
+                          "--no-figures")
+    res = _results(tmp_path / "o")
+    n_sel = res["n_selected"]
+    if n_sel >= 3:
+        assert code == 0
+        assert res["k"] < 40 and res["k"] <= n_sel - 1
+        assert any("k = 40" in m for m in res["messages"])
+        assert max(int(k) for k in res["silhouette"]) <= n_sel - 1
+    else:
+        assert code == 3
+        assert "clusters" not in res
+    assert len(res["trials"]) == 12
+
+
+# --- file-level problems: exit 2, one line naming the problem ----------------------------------------
+
+def test_missing_file(tmp_path, capsys):
+    code, _, err = _run(capsys, "--data", str(tmp_path / "nope.csv"), "--out", str(tmp_path / "o"))
+    assert code == 2
+    _one_line_error(err, "nope.csv")
+    assert not (tmp_path / "o" / "results.json").exists()
+
+
+def test_empty_file(tmp_path, capsys):
+    (tmp_path / "empty.csv").write_text("")
+    code, _, err = _run(capsys, "--data", str(tmp_path / "empty.csv"), "--out", str(tmp_path / "o"))
+    assert code == 2
+    _one_line_error(err, "empty.csv", "empty")
+
+
+def test_missing_column_is_named(tmp_path, capsys, small_frame):
+    data = tmp_path / "nocontact.csv"
+    small_frame.drop(columns=["contact"]).to_csv(data, index=False)
+    code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"))
+    assert code == 2
+    _one_line_error(err, "nocontact.csv", "contact")
+
+
+def test_cell_that_is_not_a_number_names_line_and_column(tmp_path, capsys, small_frame):
+    data = _write(small_frame, tmp_path / "bad.csv")
+    lines = data.read_text().splitlines()
+    header = lines[0].split(",")
+    row = lines[10].split(",")
+    row[header.index("y")] = "abc"
+    lines[10] = ",".join(row)
+    data.write_text("\n".join(lines) + "\n")
+    code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"))
+    assert code == 2
+    _one_line_error(err, "bad.csv", "line 11", "'y'", "abc")
+
+
+def test_millimetres_are_recognised(tmp_path, capsys, small_frame):
+    mm = small_frame.assign(**{c: small_frame[c] * 1000 for c in ("x", "y", "z")})
+    data = tmp_path / "mm.csv"
+    mm.to_csv(data, index=False)
+    code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"))
+    assert code == 2
+    _one_line_error(err, "mm.csv", "millimet", "1000")
+
+
+def test_bad_options_are_one_line(tmp_path, capsys, small_frame):
+    data = _write(small_frame, tmp_path / "rec.csv")
+    code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"), "--qd-max", "1", "2")
+    assert code == 2
+    _one_line_error(err, "qd_limits")
+    with pytest.raises(SystemExit) as e:  # argparse names the valid robots
+        main(["run", "--data", str(data), "--out", str(tmp_path / "o"), "--robot", "r2d2"])
+    assert e.value.code == 2
+    assert "simple6" in capsys.readouterr().err
+
+
+# --- trial-level problems: that trial invalid with a reason, the rest processed ----------------------
+
+def _rows(df: pd.DataFrame, p, tr) -> pd.Index:
+    return df.index[(df["participant"] == p) & (df["trial"] == tr)]
+
+
+def test_broken_trials_are_marked_and_the_rest_goes_on(tmp_path, capsys, small_frame):
+    df = small_frame.copy()
+    keys = df[["participant", "trial"]].drop_duplicates().itertuples(index=False, name=None)
+    keys = list(keys)
+    (p_back, t_back), (p_nan, t_nan), (p_noc, t_noc), (p_few, t_few), (p_rep, t_rep) = keys[:5]
+    i = _rows(df, p_back, t_back)
+    df.loc[i[20], "t"] = df.loc[i[18], "t"]                         # time goes backwards
+    df.loc[_rows(df, p_nan, t_nan)[30], "x"] = np.nan               # NaN position (empty cell)
+    df.loc[_rows(df, p_noc, t_noc), "contact"] = 0                  # never touches the box
+    few = _rows(df, p_few, t_few)
+    df = df.drop(few[3:])                                           # only 3 samples left
+    i = _rows(df, p_rep, t_rep)
+    df.loc[i[15], "t"] = df.loc[i[14], "t"]                         # a repeated time stamp
+    # rows of one trial not contiguous: move the last trial's first row to the top of the file
+    p_last, t_last = keys[-1]
+    first = _rows(df, p_last, t_last)[0]
+    df = pd.concat([df.loc[[first]], df.drop(first)])
+    data = _write(df.reset_index(drop=True), tmp_path / "broken.csv")
+
+    code, out, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"), "--no-figures")
+    assert code == 0, err
+    res = _results(tmp_path / "o")
+    assert len(res["trials"]) == len(keys), "every input trial appears in results.json"
+    by_key = {(t["participant"], t["trial"]): t for t in res["trials"]}
+    expected = {(p_back, t_back): "backwards", (p_nan, t_nan): "nan", (p_noc, t_noc): "contact",
+                (p_few, t_few): "samples", (p_rep, t_rep): "repeat", (p_last, t_last): "contiguous"}
+    for key, word in expected.items():
+        t = by_key[(_plain(key[0]), int(key[1]))]
+        assert t["status"] == "invalid", (key, t)
+        assert word in t["reason"].lower(), (key, t["reason"])
+        assert t["sparc"] is None and t["pv"] is None
+    others = [t for k, t in by_key.items() if k not in {(_plain(a), int(b)) for a, b in expected}]
+    assert any(t["status"] == "selected" for t in others)
+    assert "commonest invalid reasons" in out
+
+
+def _plain(v):
+    return v.item() if isinstance(v, np.generic) else v
+
+
+# --- the default run on the committed cohort, with figures --------------------------------------------
+
+def test_default_run_writes_results_and_figures(tmp_path):
+    out = tmp_path / "cohort"
+    proc = subprocess.run([sys.executable, "-m", "skilllib", "run", "--out", str(out), "--quiet"],
+                          capture_output=True, text=True, cwd=tmp_path, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    res = _results(out)
+    assert res["dataset"] == {"path": "data/cohort.csv", "n_trials": 1500, "n_participants": 10, "fs": 60.0}
+    assert res["sparc_params"] == {"fc": 10.0, "amp_th": 0.05, "padlevel": 4.0}
+    assert len(res["trials"]) == 1500
+    statuses = {t["status"] for t in res["trials"]}
+    assert statuses <= {"selected", "excluded", "invalid"}
+    assert res["k"] == 6 and set(res["silhouette"]) == {str(k) for k in range(2, 17)}
+    ids = {(t["participant"], t["trial"]) for t in res["trials"] if t["status"] == "selected"}
+    for c in res["clusters"]:  # prototypes are selected trials, with ids of the input's type (int here)
+        proto = c["prototype"]
+        assert type(proto["participant"]) is int and type(proto["trial"]) is int
+        assert (proto["participant"], proto["trial"]) in ids
+    pvs = [c["centre"]["pv"] for c in res["clusters"]]
+    assert pvs == sorted(pvs) and [c["id"] for c in res["clusters"]] == list(range(6))
+    tr = res["transfer"]
+    assert tr["robot"] == "Simple6" and tr["q0_deg"] == pytest.approx([0, -60, 120, 90, -90, 30])
+    assert len(tr["prototypes"]) == 6
+    for p in tr["prototypes"]:
+        assert len(p["peak_abs_qd"]) == 6 and p["ik_max_residual_m"] <= 1e-6
+        assert p["time_scale"] >= 1
+        assert not (p["feasible"] and p["time_scale"] > 1)
+        assert p["feasible"] or p["time_scale"] > 1 or p["flags"]
+    for name in res["figures"]:
+        assert (out / name).stat().st_size > 0
+    assert {Path(n).suffix for n in res["figures"]} == {".png", ".svg"}
