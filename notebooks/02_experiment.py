@@ -1,0 +1,343 @@
+# ---
+# jupyter:
+#   jupytext:
+#     cell_metadata_filter: -all
+#     notebook_metadata_filter: kernelspec,jupytext
+#     text_representation:
+#       extension: .py
+#       format_name: percent
+#       format_version: '1.3'
+#       jupytext_version: 1.19.6
+#   kernelspec:
+#     display_name: Python 3 (ipykernel)
+#     language: python
+#     name: python3
+# ---
+
+# %% [markdown]
+# # The experiment and its data
+#
+# Maldonado & Zetzsche (KI 2020) asked ten people to touch a box with a virtual spoon at a prescribed
+# speed. This chapter describes the task and the device, and the open format in which the book keeps
+# recordings. It presents the generative model that stands in for the unpublished recordings and checks
+# that model against every number the paper publishes. It then turns each trial into a segment from
+# movement onset to contact and into the features the clustering chapter uses: peak speed (PV), contact
+# speed, duration, SPARC and LDLJ.
+#
+# ```{note}
+# **The data in this chapter are synthetic.** The paper's recordings are not public. Every trial shown
+# here was made by the seeded generative model in `skilllib.cohort` (function `generate_cohort`, seed 2:
+# the first seed that meets every calibration target, see `data/README.md`), calibrated to the paper's
+# aggregate numbers, and committed as `data/cohort.csv`.
+# Nothing here is a measurement of a person. The same loader and feature code run on real recordings in
+# the same format (see the chapter on your own data).
+# ```
+
+# %%
+import time
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from skilllib import cohort, data, features, figures
+from skilllib.prototypes import silhouette_sweep
+
+pd.set_option("display.precision", 3)
+COHORT_CSV = Path(cohort.__file__).resolve().parents[1] / "data" / "cohort.csv"
+
+# %% [markdown]
+# ## The task and the device
+#
+# In a virtual environment the participant holds the stylus of a Phantom Premium 1.5 (3D Systems), to
+# which a virtual spoon is attached. The device renders the contact force when the spoon touches a solid
+# red *contact box*. A trial starts with the spoon tip resting in a semi-transparent *start box* above
+# the contact box. The participant moves down in a roughly vertical plane and touches the top of the box,
+# aiming at a contact speed of 0.5 m/s. After the touch the tip stays briefly on the surface. The paper
+# records 10 participants x 150 trials, with the tip position sampled at 60 Hz (Maldonado & Zetzsche
+# 2020, Sect. 5; Maldonado et al. 2019).
+#
+# Axes follow the paper's Fig. 1: $x$ mediolateral (side to side), $y$ vertical (up), $z$
+# anteroposterior (forward and back). Units are metres and seconds. The Phantom Premium 1.5 reaches about
+# 381 x 267 x 191 mm ($x$, $y$, $z$) with a nominal position resolution of about 0.03 mm. Its own velocity
+# signal is noisy, so speeds here come from differentiated positions.
+#
+# ## The recordings format
+#
+# One CSV file holds a long table with one row per sample:
+#
+# | column | unit | meaning |
+# |---|---|---|
+# | `participant` | – | participant id (integer or label) |
+# | `trial` | – | trial number within the participant |
+# | `t` | s | time stamp (increasing within a trial) |
+# | `x`, `y`, `z` | m | spoon-tip position in the device frame |
+# | `contact` | 0/1 | 1 while the tip touches the contact surface |
+#
+# A trial's rows are contiguous and in time order. `skilllib.data.read_recordings` reads and checks a
+# file. Problems with the file itself raise `DataFormatError` with the file, line and column: a missing
+# column, a cell that is not a number, positions in millimetres, time in milliseconds, or mixed sampling
+# rates. Problems with a single trial mark that trial `invalid` with a reason and the rest goes on; those
+# are time going backwards, missing positions, too few samples, or rows that are not contiguous. The
+# sampling rate comes from the time stamps.
+
+# %%
+t0 = time.perf_counter()
+rec = data.read_recordings(COHORT_CSV)
+t_read = time.perf_counter() - t0
+print(f"{COHORT_CSV.name}: {COHORT_CSV.stat().st_size / 1e6:.1f} MB, {len(rec.frame)} rows, "
+      f"{len(rec)} trials of {rec.trials.participant.nunique()} participants, "
+      f"sampling rate {rec.fs:.2f} Hz from the time stamps; read and validated in {t_read:.2f} s")
+print("trial status after reading:", rec.trials.status.value_counts().to_dict())
+rec.frame.head()
+
+# %% [markdown]
+# The committed file is exactly what the seeded generator writes: regenerating the cohort and passing it
+# through the same writer (`skilllib.data.format_recordings`, which rounds t to 0.1 ms and positions to
+# 0.01 mm) reproduces the file byte for byte. A test checks the same.
+
+# %%
+synthetic = cohort.generate_cohort(cohort.SEED)
+same = data.format_recordings(synthetic.frame).encode() == COHORT_CSV.read_bytes()
+print(f"generate_cohort(seed={synthetic.seed}) written again equals {COHORT_CSV.name}: {same}")
+
+# %% [markdown]
+# ## The generative model
+#
+# The model builds each trial from published regularities of arm movements; it is not fitted to
+# anyone's trajectories.
+#
+# **Submovements.** The vertical drop of the tip is a sum of minimum-jerk submovements (Flash & Hogan 1985).
+# Decomposing reaching movements into overlapping submovements with onset, duration and amplitude is the
+# standard account of intermittency (Rohrer & Hogan 2003). One submovement of amplitude $D$ and duration
+# $T$ has speed
+#
+# $$ v(\tau) = \frac{D}{T}\,30\,\tau^2 (1-\tau)^2, \qquad \max v = 1.875\,\frac{D}{T} \text{ at } \tau = 0.5 . $$ (eq-mj)
+#
+# Normalised speed profiles of vertical arm movements keep their shape across speed and load (Atkeson &
+# Hollerbach 1985). In *downward* movements the acceleration phase is relatively longer than in upward
+# ones (Papaxanthis et al. 1998), and the relative time to peak speed $k$ moves above 0.5 for fast
+# movements and below 0.5 for slow ones (Nagasaki 1989). The model therefore joins the rising half of a
+# minimum-jerk bell of duration $2kT$ to the falling half of one of duration $2(1-k)T$. The two halves
+# share the peak [](#eq-mj) and the acceleration is continuous. $k$ is a participant trait (0.5–0.6),
+# decreases by 0.2 per second of duration and varies from trial to trial.
+#
+# **Hitting the surface at a speed.** A participant cannot stop *at* the surface and still hit it at
+# 0.5 m/s. Without a correction, the primary submovement aims *through* the surface: it is planned so that
+# the tip reaches the box on the falling flank of its bell, at the intended contact speed. The approach
+# ends there with non-zero speed, a truncated bell. In many trials the primary instead stops short of the
+# surface, as primary submovements tend to do (Meyer et al. 1988; Elliott et al. 2004). A corrective
+# submovement then starts during its deceleration, and its amplitude is solved so that the tip reaches
+# the surface at the intended contact speed. Faster primaries are less accurate, so the probability of a
+# correction grows with the primary's peak speed (Meyer et al. 1988). Corrective submovements are brief
+# (0.15–0.35 s) and start, on average, during the primary's deceleration. Whether they blend into the
+# primary or show as a second peak decides how much they lower SPARC (Balasubramanian et al. 2015).
+#
+# **Participants and trials.** Each participant has a start-to-surface distance (0.08–0.2 m, inside the
+# device's 267 mm vertical range), a preferred primary duration (never below 0.2 s, an assumption
+# that rules out implausibly fast aiming), a typical contact speed that is biased
+# away from 0.5 m/s, and an asymmetry and a correction rate. Their trial-to-trial variability has its
+# own size. The traits are drawn by Latin-hypercube sampling, so that ten participants cover each range
+# evenly. Each trial varies the start position inside a 2 cm start box, the duration, the intended
+# contact speed (log-normal), the corrections, and the rest before onset (0.3–0.6 s) and after contact
+# (0.2–0.4 s).
+#
+# **Contact, off-axis motion and the device.** At the touch the tip meets a stiff virtual wall,
+# critically damped with a 10 ms time constant. It then rests 0.2–1 mm into it, and `contact` is 1 from
+# the first sample at or after the touch. Off the vertical there is a participant-specific tilt of a few
+# degrees, a lateral bow of a few millimetres per trial, and slow postural sway of at most 0.3 mm. White
+# noise at the device's 0.03 mm resolution is added on every axis, and samples are taken at 60 Hz.
+# Randomness comes from `numpy.random.default_rng` streams spawned from one seed: one stream for the
+# traits and one per participant.
+#
+# The population parameters, as used for the committed cohort:
+
+# %%
+cohort.model_table()
+
+# %% [markdown]
+# ## Calibration: target against obtained
+#
+# The paper publishes only aggregate numbers, and the table compares each with the synthetic cohort.
+# 650 of 1500 trials have a contact speed in [0.3, 0.7] m/s. Participants vary widely in peak speed,
+# contact speed and duration (Fig. 1b). Silhouette analysis finds valid clusterings for every $k$ from 2
+# to 16. Six clusters give an average silhouette of 0.337, with centres whose PVs are well separated.
+# The clustering is the paper's: K-means from scikit-learn (`n_init=10`, `random_state=0`) on the
+# **raw** (PV in m/s, SPARC) tuples of the selected trials, via `skilllib.prototypes.silhouette_sweep`. A
+# clustering is "valid" when its average silhouette is positive and every cluster has at least one trial
+# above the average (scikit-learn's silhouette example). The table's last column says whether each target
+# is met; the per-$k$ averages follow it.
+
+# %%
+t0 = time.perf_counter()
+feats = features.trial_features(rec)
+t_feat = time.perf_counter() - t0
+print(f"features of {len(feats)} trials in {t_feat:.2f} s")
+sweep = silhouette_sweep(features.select(feats), 2, 16, scaling="raw")
+cohort.calibration_table(feats, sweep)
+
+# %%
+sweep.table().T
+
+# %% [markdown]
+# ## The paper's Figure 1b, redrawn
+#
+# [](#fig-trials) shows, as the paper's Fig. 1b does, the vertical trajectory $y(t)$ and the speed
+# profile of every trial, aligned at contact and with one column per participant. Selected trials are in
+# colour and excluded ones in grey. Speed is drawn only up to contact, as the features use it. Start
+# heights, peak speeds, contact speeds and durations differ clearly between participants. Within a
+# participant some trials reach the surface at the end of a single bell, and others after a
+# slow-down and a second push.
+
+# %%
+#| label: fig-trials
+#| caption: Synthetic cohort. Vertical tip position y (device frame) and approach speed of every trial against time from contact, one column per participant; selected trials (contact speed 0.3-0.7 m/s) in colour, excluded ones in grey.
+fig = figures.plot_trials_by_participant(rec, feats)
+
+# %% [markdown]
+# ## Per-participant summaries
+#
+# The table gives, per participant, the median and interquartile range over all valid trials. [](#fig-participants)
+# shows every trial.
+
+# %%
+features.participant_summary(feats)
+
+# %%
+#| label: fig-participants
+#| caption: Synthetic cohort. Peak speed, contact speed (selection window shaded), duration from onset to contact, and SPARC of every valid trial per participant; boxes show quartiles, selected trials are coloured.
+fig = figures.plot_participant_features(feats)
+
+# %% [markdown]
+# ## From samples to a segment
+#
+# **Speed.** Velocity is the derivative of the positions by central differences (`numpy.gradient`,
+# second order inside and at the ends). Its norm is the speed. Only the samples *before* contact are
+# used: the impact is a velocity discontinuity, and a difference across it would mix the approach with
+# the rest on the surface. No low-pass filter is applied. Position noise at the device's resolution gives
+# a speed noise of about $0.03\,\text{mm} \times 60\,\text{Hz} / \sqrt{2} \approx 1.3$ mm/s, far below the
+# 0.05 m/s onset threshold. SPARC reads the spectrum only above 5 % of its peak and up to the adaptive
+# cut-off, so that noise does not reach it. A filter, by contrast, would itself smooth the profile that
+# SPARC measures. The speed at rest, more than 0.2 s before onset, shows the noise floor. Besides the
+# device noise it contains the slow postural sway of the model:
+
+# %%
+rs = features.rest_speed(rec, feats)
+print(f"speed at rest over {rs.size} samples: median {1e3 * np.median(rs):.2f} mm/s, "
+      f"99th percentile {1e3 * np.percentile(rs, 99):.2f} mm/s, maximum {1e3 * rs.max():.2f} mm/s "
+      f"(onset threshold {1e3 * features.ONSET_SPEED:.0f} mm/s)")
+
+# %% [markdown]
+# **Onset, contact, segment.** Contact is the first sample flagged `contact = 1`. Onset is the first
+# earlier sample whose speed exceeds 0.05 m/s (the paper). The segment runs from onset to the last sample
+# before contact. Its peak is PV, its last speed is the *contact speed*, and its length $N$ gives the
+# duration $N/f_s$ from onset to the first contact sample. SPARC is computed on the segment with
+# $f_c = 10$ Hz, amplitude threshold 0.05 and zero-padding level 4, the SPARC chapter's choice, and LDLJ
+# on the same segment. A trial that cannot be segmented stays in the table as `invalid` with the reason:
+# no contact, no rest before onset, no onset, fewer than 5 samples from onset to contact, or bad samples.
+# [](#fig-segmentation) shows four trials: a selected trial with the median SPARC, the least smooth
+# selected trial, and one excluded on each side of the window.
+
+# %%
+valid = feats[feats.status != "invalid"]
+sel_ = valid[valid.status == "selected"]
+examples = [tuple(sel_.loc[(sel_.sparc - sel_.sparc.median()).abs().idxmin(), ["participant", "trial"]]),
+            tuple(sel_.loc[sel_.sparc.idxmin(), ["participant", "trial"]]),
+            tuple(valid.loc[(valid.contact_speed - 1.0).abs().idxmin(), ["participant", "trial"]]),
+            tuple(valid.loc[(valid.contact_speed - 0.2).abs().idxmin(), ["participant", "trial"]])]
+feats.set_index(["participant", "trial"]).loc[examples, ["status", "reason", "pv", "contact_speed", "duration", "sparc", "ldlj"]]
+
+# %%
+#| label: fig-segmentation
+#| caption: Synthetic cohort. Segmentation of four trials. Top, vertical position; bottom, approach speed with the 0.05 m/s onset threshold (dashed); shaded, the segment from onset (circle) to the last sample before contact (square, the contact speed); dotted, the first contact sample.
+fig = figures.plot_segmentation(rec, feats, examples)
+
+# %% [markdown]
+# **What 60 Hz can tell.** Because the data are synthetic, the generator's noise-free ground truth is
+# known, and the estimates can be checked against it ([](#fig-truth)). PV agrees closely. The contact
+# speed is the mean speed over the last sampling interval before the touch, which ends up to one interval
+# (16.7 ms) before contact. On a decelerating approach it therefore reads slightly high. Duration starts
+# at the 0.05 m/s onset rather than at the true start of motion, so it reads short.
+
+# %%
+m = valid.merge(synthetic.truth, on=["participant", "trial"], suffixes=("", "_true"))
+err = m.contact_speed - m.contact_speed_true
+flip = ((m.contact_speed_true >= 0.3) & (m.contact_speed_true <= 0.7)) != (m.status == "selected")
+print(f"PV: median relative error {100 * np.median(m.pv / m.pv_true - 1):+.1f} %; "
+      f"contact speed: mean error {err.mean():+.3f} m/s, SD {err.std():.3f} m/s; "
+      f"{int(flip.sum())} of {len(m)} trials would change selection with the true contact speed")
+
+# %% [markdown]
+# SPARC has a limit of its own at this rate. A fast approach lasts only 10–15 samples at 60 Hz, and the
+# zero-padded spectrum of so short a profile is smooth whatever its shape. Short segments therefore
+# score high (smooth) SPARC values, even when the speed profile has two peaks. This dependence on the
+# sampling grid, noted by the SPARC authors, ties SPARC to PV in any 60 Hz data set, the paper's included.
+
+# %%
+sel_n = features.select(feats)
+by_n = sel_n.groupby(pd.cut(sel_n.n, [0, 12, 16, 20, 25, 40]), observed=True).sparc.agg(["count", "median"])
+print(f"selected trials: correlation of segment length with SPARC {np.corrcoef(sel_n.n, sel_n.sparc)[0, 1]:+.2f}, "
+      f"with PV {np.corrcoef(sel_n.n, sel_n.pv)[0, 1]:+.2f}")
+by_n.rename_axis("segment samples")
+
+# %%
+#| label: fig-truth
+#| caption: Synthetic cohort. Peak speed, contact speed and duration estimated from the 60 Hz samples against the generator's noise-free values; dashed, identity.
+fig = figures.plot_estimates_vs_truth(feats, synthetic.truth)
+
+# %% [markdown]
+# ## The selection
+#
+# The paper keeps the trials with $0.3 \le$ contact speed $\le 0.7$ m/s, 650 of 1500. Every trial
+# stays in the feature table with its status: `selected`, `excluded` with the reason (for example
+# "contact speed 0.823 m/s above 0.7 m/s"), or `invalid`.
+
+# %%
+features.status_counts(feats).T
+
+# %%
+#| label: fig-contact-speeds
+#| caption: Synthetic cohort. Contact speeds of all valid trials; the selection window 0.3-0.7 m/s shaded.
+fig = figures.plot_contact_speeds(feats)
+
+# %% [markdown]
+# ## The feature table
+#
+# The clustering chapter starts from this table: one row per trial, with the status and reason, PV (m/s),
+# contact speed (m/s), duration (s), SPARC, LDLJ, the segment length and the onset and contact time
+# stamps (s). Its selected rows are the (PV, SPARC) tuples of [](#fig-feature-space). The chapter calls
+# `skilllib.features.trial_features(read_recordings(path))` and `skilllib.features.select(...)`
+# itself; `skilllib.features.segment(...)` returns a trial's segmented positions, velocities and speeds
+# for the transfer chapter.
+
+# %%
+feats.head(8)
+
+# %%
+features.select(feats)[["pv", "contact_speed", "duration", "sparc", "ldlj"]].describe()
+
+# %%
+#| label: fig-feature-space
+#| caption: Synthetic cohort. Peak speed PV against SPARC; selected trials coloured by participant, excluded trials grey. The selected tuples are the input of the clustering chapter.
+fig = figures.plot_feature_space(feats)
+
+# %% [markdown]
+# ## Summary
+#
+# - The book's data are synthetic. A seeded model of minimum-jerk submovements (a primary one, often
+#   with a corrective one) produces 10 x 150 approaches that end at a surface with non-zero speed,
+#   sampled at 60 Hz like the Phantom. It reproduces the paper's published aggregates: the selected
+#   count, large differences between participants, valid clusterings for k = 2..16, and an average
+#   silhouette near 0.337 at k = 6 with centres spread in PV.
+# - Recordings live in one open CSV format. `read_recordings` rejects broken files with the file, line
+#   and column, and marks broken trials `invalid` with a reason instead of dropping them.
+# - Features come from positions differentiated up to contact. Onset is at 0.05 m/s and contact at the
+#   first contact sample, and the segment runs from onset to the last sample before contact. Every trial
+#   keeps a status and a reason; the selected trials go on to the clustering chapter.
+#
+# **References.** Atkeson & Hollerbach 1985, J Neurosci 5:2318. Balasubramanian et al. 2015, J NeuroEng
+# Rehabil 12:112. Elliott et al. 2004, J Mot Behav 36:339. Flash & Hogan 1985, J Neurosci 5:1688.
+# Maldonado et al. 2019 (the VR experiment). Maldonado & Zetzsche 2020, KI 2020. Meyer et al. 1988,
+# Psychol Rev 95:340. Nagasaki 1989, Exp Brain Res 74:319. Papaxanthis et al. 1998, Neurosci Lett 253:103.
+# Rohrer & Hogan 2003, Biol Cybern 89:190.

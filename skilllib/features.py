@@ -1,0 +1,246 @@
+"""Speed, onset/contact segmentation, per-trial features and the paper's selection (KI 2020, Sect. 5).
+
+For every trial of :class:`skilllib.data.Recordings`:
+
+* **speed** (m/s): norm of the velocity obtained by differentiating the positions with central differences
+  (``numpy.gradient``: second-order inside, first-order one-sided at the ends) over the samples *before*
+  contact only. The Phantom's own velocity signal is noisy (field notes), so positions are differentiated.
+  No low-pass filter: at the device's position resolution (about 0.03 mm) the speed noise is about
+  ``0.03 mm * 60 Hz / sqrt(2)`` = 1.3 mm/s, a thousandth of a typical peak speed; SPARC only reads the
+  spectrum above 5 % of its maximum and below its adaptive cut-off (Balasubramanian et al. 2015), so that
+  noise does not reach it, while any filter would itself smooth the profile that SPARC measures.
+  The differentiation never uses a sample taken in contact: the impact is a velocity discontinuity and a
+  central difference across it would mix the approach with the rest on the surface.
+* **contact**: the first sample flagged ``contact == 1``; the approach is every sample before it.
+* **onset**: the first approach sample whose speed exceeds 0.05 m/s (the paper).
+* **segment**: onset to the last sample before contact, ``N`` samples; ``duration = N / fs`` (s), which is
+  the time from the onset sample to the first contact sample.
+* **features**: ``pv`` peak speed of the segment (m/s); ``contact_speed`` speed at the last sample before
+  contact (m/s; a backward difference, i.e. the mean speed over the last sampling interval before the
+  tip touched, between 0 and 1 interval before the touch); ``sparc`` (Balasubramanian et al. 2015) with
+  :data:`SPARC_PARAMS`; ``ldlj`` log dimensionless jerk (Balasubramanian et al. 2015).
+* **selection**: ``0.3 <= contact_speed <= 0.7`` m/s (the paper: 650 of 1500 trials).
+
+Every trial stays in the table: ``status`` is ``selected``, ``excluded`` (outside the window, with the
+reason) or ``invalid`` (cannot be segmented or bad samples, with the reason; features NaN).
+"""
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from . import smoothness
+from .data import Recordings, recordings_from_frame
+
+ONSET_SPEED = 0.05  #: m/s, movement onset threshold (the paper)
+CONTACT_WINDOW = (0.3, 0.7)  #: m/s, selected contact speeds, inclusive (the paper)
+MIN_SEGMENT_SAMPLES = 5  #: fewer samples from onset to contact: too short to analyse
+#: SPARC settings of the SPARC chapter (Balasubramanian et al. 2015 defaults): fc in Hz, amp_th, padlevel
+SPARC_PARAMS: dict[str, float] = dict(getattr(smoothness, "SPARC_PARAMS", {"fc": 10.0, "amp_th": 0.05,
+                                                                          "padlevel": 4}))
+FEATURE_COLUMNS = ("participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
+                   "ldlj", "n", "t_onset", "t_contact")
+
+
+@dataclass(frozen=True)
+class Segment:
+    """The approach of one trial from onset to the last sample before contact.
+
+    ``t`` (N,) s as recorded; ``pos`` (N, 3) m; ``vel`` (N, 3) m/s; ``speed`` (N,) m/s; ``fs`` Hz;
+    ``onset`` and ``contact``: indices in the trial of the onset sample and of the first contact sample.
+    """
+
+    participant: Any
+    trial: int
+    t: np.ndarray
+    pos: np.ndarray
+    vel: np.ndarray
+    speed: np.ndarray
+    fs: float
+    onset: int
+    contact: int
+
+    @property
+    def duration(self) -> float:
+        """Onset to contact in s (``N / fs``)."""
+        return len(self.speed) / self.fs
+
+
+def velocity(pos: np.ndarray, fs: float) -> np.ndarray:
+    """Velocity (N, 3) in m/s of positions (N, 3) in m sampled at ``fs`` Hz: ``numpy.gradient``
+    (central differences inside, one-sided at both ends); needs N >= 2."""
+    pos = np.asarray(pos, dtype=float)
+    if len(pos) < 2:
+        raise ValueError(f"need at least 2 samples to differentiate, got {len(pos)}")
+    return np.gradient(pos, 1.0 / fs, axis=0, edge_order=2)
+
+
+def segment_arrays(t: np.ndarray, pos: np.ndarray, contact: np.ndarray, fs: float, *,
+                   onset_speed: float = ONSET_SPEED, min_samples: int = MIN_SEGMENT_SAMPLES,
+                   participant: Any = None, trial: int = -1) -> Segment | str:
+    """Segment one trial's samples (``contact`` boolean); returns the :class:`Segment` or the reason
+    (a string) why the trial cannot be segmented."""
+    hits = np.flatnonzero(contact)
+    if hits.size == 0:
+        return "no contact: the contact flag is never 1"
+    c = int(hits[0])
+    if c < 2:
+        return f"in contact from sample {c + 1}: no approach recorded before contact"
+    vel = velocity(pos[:c], fs)
+    speed = np.linalg.norm(vel, axis=1)
+    moving = np.flatnonzero(speed > onset_speed)
+    if moving.size == 0:
+        return f"no onset: speed stays below {onset_speed:g} m/s before contact (max {speed.max():.3f} m/s)"
+    o = int(moving[0])
+    if o == 0:
+        return (f"no rest before onset: speed {speed[0]:.2f} m/s > {onset_speed:g} m/s at the first sample "
+                f"(the movement started before the recording)")
+    n = c - o
+    if n < min_samples:
+        return f"too short: {n} samples from onset to contact (need at least {min_samples})"
+    return Segment(participant, trial, np.asarray(t[o:c], dtype=float), np.asarray(pos[o:c], dtype=float),
+                   vel[o:], speed[o:], float(fs), o, c)
+
+
+def _as_recordings(recordings: Recordings | pd.DataFrame) -> Recordings:
+    return recordings if isinstance(recordings, Recordings) else recordings_from_frame(recordings)
+
+
+def segment(recordings: Recordings | pd.DataFrame, participant: Any, trial: int, *,
+            onset_speed: float = ONSET_SPEED, min_samples: int = MIN_SEGMENT_SAMPLES) -> Segment:
+    """The segmented approach (onset to the last sample before contact) of one trial.
+
+    Raises KeyError for an unknown trial and ValueError, with the reason, for an invalid one.
+    """
+    rec = _as_recordings(recordings)
+    tr = rec.trial(participant, trial)
+    row = rec.trials[(rec.trials["participant"] == participant) & (rec.trials["trial"] == trial)].iloc[0]
+    if row["status"] != "ok":
+        raise ValueError(f"trial {trial} of participant {participant!r} is invalid: {row['reason']}")
+    seg = segment_arrays(tr.t, tr.pos, tr.contact, rec.fs, onset_speed=onset_speed, min_samples=min_samples,
+                         participant=participant, trial=trial)
+    if isinstance(seg, str):
+        raise ValueError(f"trial {trial} of participant {participant!r} cannot be segmented: {seg}")
+    return seg
+
+
+def _sparc_all(speeds: list[np.ndarray], fs: float, params: dict[str, float]) -> np.ndarray:
+    """SPARC of each profile; uses ``smoothness.sparc_many`` when the module provides it."""
+    many = getattr(smoothness, "sparc_many", None)
+    if many is not None:
+        return np.asarray(many(speeds, fs, **params), dtype=float)
+    return np.array([smoothness.sparc(s, fs, **params) for s in speeds], dtype=float)
+
+
+def _ldlj(speed: np.ndarray, fs: float) -> float:
+    """Log dimensionless jerk of a speed profile (Balasubramanian et al. 2015; field notes):
+    DLJ = -(N dt)^3 / max(v)^2 * sum((diff(v, 2) / dt^2)^2) dt, LDLJ = -ln|DLJ|."""
+    f = getattr(smoothness, "ldlj", None)
+    if f is not None:
+        return float(f(speed, fs))
+    dt = 1.0 / fs
+    v = np.asarray(speed, dtype=float)
+    jerk = np.diff(v, 2) / dt**2
+    dlj = -((len(v) * dt) ** 3) / v.max() ** 2 * np.sum(jerk**2) * dt
+    return float(-np.log(abs(dlj)))
+
+
+def _window_reason(v: float, window: tuple[float, float]) -> str:
+    lo, hi = window
+    if v < lo:
+        return f"contact speed {v:.3f} m/s below {lo:g} m/s"
+    if v > hi:
+        return f"contact speed {v:.3f} m/s above {hi:g} m/s"
+    return ""
+
+
+def trial_features(recordings: Recordings | pd.DataFrame, *, sparc_params: Mapping[str, float] | None = None,
+                   window: tuple[float, float] = CONTACT_WINDOW, onset_speed: float = ONSET_SPEED,
+                   min_samples: int = MIN_SEGMENT_SAMPLES,
+                   progress: Callable[[Sequence[Any], str], Iterable[Any]] | None = None) -> pd.DataFrame:
+    """One row per trial of ``recordings`` (all of them, in their order) with its features and status.
+
+    Columns: ``participant, trial, status`` (``selected`` / ``excluded`` / ``invalid``), ``reason``
+    (empty when selected), ``pv`` (m/s), ``contact_speed`` (m/s), ``duration`` (s), ``sparc``, ``ldlj``,
+    ``n`` (segment samples), ``t_onset``, ``t_contact`` (s, time stamps of the onset sample and of the
+    first contact sample). Features are NaN only for invalid trials. ``sparc_params`` defaults to
+    :data:`SPARC_PARAMS`; ``window`` is the inclusive contact-speed window in m/s; ``progress(items,
+    description)`` may wrap the loop over trials (e.g. tqdm).
+    """
+    rec = _as_recordings(recordings)
+    params = {**SPARC_PARAMS, **(sparc_params or {})}
+    rows, speeds = [], []
+    items = list(zip(rec.keys(), rec.trials["status"], rec.trials["reason"]))
+    for (p, tr), status, reason in (progress(items, "features") if progress else items):
+        row = {"participant": p, "trial": tr, "status": "invalid", "reason": reason}
+        if status == "ok":
+            d = rec.trial(p, tr)
+            seg = segment_arrays(d.t, d.pos, d.contact, rec.fs, onset_speed=onset_speed, min_samples=min_samples)
+            if isinstance(seg, str):
+                row["reason"] = seg
+            else:
+                v = seg.speed
+                row.update(status="", pv=float(v.max()), contact_speed=float(v[-1]), duration=seg.duration,
+                           ldlj=_ldlj(v, rec.fs), n=len(v), t_onset=float(d.t[seg.onset]),
+                           t_contact=float(d.t[seg.contact]), _k=len(speeds))
+                speeds.append(v)
+        rows.append(row)
+    sp = _sparc_all(speeds, rec.fs, params) if speeds else np.array([])
+    for row in rows:
+        if row["status"] == "":
+            row["sparc"] = float(sp[row.pop("_k")])
+            row["reason"] = _window_reason(row["contact_speed"], window)
+            row["status"] = "excluded" if row["reason"] else "selected"
+    out = pd.DataFrame(rows, columns=list(FEATURE_COLUMNS))
+    out["n"] = out["n"].astype("Int64")
+    return out
+
+
+def select(features: pd.DataFrame) -> pd.DataFrame:
+    """The selected trials (status ``selected``), index reset: the input of the clustering chapter."""
+    return features[features["status"] == "selected"].reset_index(drop=True)
+
+
+def status_counts(features: pd.DataFrame) -> pd.DataFrame:
+    """Trials per participant and status (columns selected, excluded, invalid, total), with a total row."""
+    t = pd.crosstab(features["participant"], features["status"])
+    t = t.reindex(columns=["selected", "excluded", "invalid"], fill_value=0)
+    t["total"] = t.sum(axis=1)
+    t.loc["all"] = t.sum(axis=0)
+    return t
+
+
+def participant_summary(features: pd.DataFrame) -> pd.DataFrame:
+    """Per participant, over its valid (selected or excluded) trials: median and interquartile range of
+    peak speed (m/s), contact speed (m/s), duration (s) and SPARC, and the number of selected trials."""
+    valid = features[features["status"] != "invalid"]
+    g = valid.groupby("participant", sort=True)
+    cols = {"pv": "PV (m/s)", "contact_speed": "contact speed (m/s)", "duration": "duration (s)",
+            "sparc": "SPARC"}
+    out = pd.DataFrame({"valid trials": g.size(),
+                        "selected": g["status"].agg(lambda s: int((s == "selected").sum()))})
+    for c, name in cols.items():
+        q = g[c].quantile([0.25, 0.5, 0.75]).unstack()
+        out[f"{name} median"] = q[0.5]
+        out[f"{name} IQR"] = q[0.75] - q[0.25]
+    return out
+
+
+def rest_speed(recordings: Recordings | pd.DataFrame, features: pd.DataFrame, margin: float = 0.2) -> np.ndarray:
+    """Speeds (m/s) at the interior samples (central differences, as inside a segment) more than
+    ``margin`` s before onset in the valid trials: the noise floor at rest (white position noise of SD s
+    gives s * fs / sqrt(2) per axis). The margin leaves out the slow start of the movement; the first
+    sample is left out because its one-sided difference amplifies noise about 2.5 times more."""
+    rec = _as_recordings(recordings)
+    out = []
+    valid = features.loc[features["status"] != "invalid", ["participant", "trial", "t_onset"]]
+    for p, tr, t_on in valid.itertuples(index=False):
+        d = rec.trial(p, tr)
+        o = int(np.searchsorted(d.t, t_on - margin))
+        if o >= 3:
+            out.append(np.linalg.norm(velocity(d.pos[:o], rec.fs), axis=1)[1:-1])
+    return np.concatenate(out) if out else np.array([])

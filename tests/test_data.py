@@ -1,0 +1,320 @@
+"""Tests of skilllib.data: the recordings CSV (reading, validating, writing).
+
+Each bad-input case writes a small CSV in tmp_path and checks the error message or the trial's status.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from skilllib.data import (
+    COLUMNS, DataFormatError, format_recordings, read_recordings, recordings_from_frame, write_recordings,
+)
+
+FS = 60.0
+
+
+def trial_frame(participant=1, trial=1, n=40, fs=FS, contact_at=30, t0=0.0, scale=1.0) -> pd.DataFrame:
+    """A plausible small trial: rest, a 0.1 m downward minimum-jerk approach, contact from ``contact_at``."""
+    t = t0 + np.arange(n) / fs
+    tau = np.clip((np.arange(n) - 8) / (contact_at - 6), 0, 1)
+    y = 0.1 * (1 - tau**3 * (10 - 15 * tau + 6 * tau**2))
+    contact = (np.arange(n) >= contact_at).astype(int)
+    return pd.DataFrame({"participant": participant, "trial": trial, "t": t, "x": 0.01 * scale,
+                         "y": y * scale, "z": -0.02 * scale, "contact": contact})
+
+
+def cohort_frame(n_part=2, n_trials=3, **kw) -> pd.DataFrame:
+    return pd.concat([trial_frame(p, tr, **kw) for p in range(1, n_part + 1) for tr in range(1, n_trials + 1)],
+                     ignore_index=True)
+
+
+def write(tmp_path: Path, df: pd.DataFrame, name="rec.csv") -> Path:
+    return write_recordings(df, tmp_path / name)
+
+
+def status(rec, participant, trial) -> tuple[str, str]:
+    row = rec.trials[(rec.trials.participant == participant) & (rec.trials.trial == trial)].iloc[0]
+    return row.status, row.reason
+
+
+# --- a good file --------------------------------------------------------------------------------
+
+def test_good_file_reads_with_all_trials_ok_and_60_hz(tmp_path):
+    rec = read_recordings(write(tmp_path, cohort_frame()))
+    assert len(rec) == 6 and (rec.trials.status == "ok").all()
+    assert rec.fs == pytest.approx(60.0, rel=1e-3)
+    assert rec.trials.first_line.tolist() == [2, 42, 82, 122, 162, 202]
+    tr = rec.trial(2, 3)
+    assert tr.pos.shape == (40, 3) and tr.contact.sum() == 10 and tr.t[0] == 0.0
+
+
+def test_write_read_write_is_byte_identical(tmp_path):
+    p1 = write(tmp_path, cohort_frame(), "a.csv")
+    p2 = write(tmp_path, read_recordings(p1), "b.csv")
+    assert p1.read_bytes() == p2.read_bytes()
+
+
+def test_writer_rounds_and_has_no_negative_zero():
+    df = trial_frame(n=6, contact_at=4)
+    df.loc[0, "x"] = -1e-9
+    text = format_recordings(df)
+    assert text.splitlines()[0] == ",".join(COLUMNS)
+    assert "-0.00000" not in text and ",0.00000," in text
+    assert text.splitlines()[2].split(",")[2] == "0.0167"  # t to 0.1 ms
+
+
+def test_string_participant_labels_are_kept(tmp_path):
+    df = cohort_frame()
+    df["participant"] = "P" + df["participant"].astype(str)
+    rec = read_recordings(write(tmp_path, df))
+    assert rec.keys()[0] == ("P1", 1) and (rec.trials.status == "ok").all()
+
+
+def test_extra_columns_and_blank_lines_are_tolerated(tmp_path):
+    df = cohort_frame(1, 2).assign(note=1.5)
+    p = tmp_path / "r.csv"
+    text = df.to_csv(index=False) + "\n\n"
+    p.write_text(text)
+    rec = read_recordings(p)
+    assert len(rec) == 2 and list(rec.frame.columns) == list(COLUMNS)
+
+
+# --- file-level problems raise -----------------------------------------------------------------
+
+def test_missing_file(tmp_path):
+    with pytest.raises(DataFormatError, match=r"nope\.csv: file not found"):
+        read_recordings(tmp_path / "nope.csv")
+
+
+def test_empty_file(tmp_path):
+    (tmp_path / "e.csv").write_text("")
+    with pytest.raises(DataFormatError, match="e.csv: file is empty"):
+        read_recordings(tmp_path / "e.csv")
+
+
+def test_header_only_is_empty(tmp_path):
+    (tmp_path / "h.csv").write_text(",".join(COLUMNS) + "\n")
+    with pytest.raises(DataFormatError, match="empty"):
+        read_recordings(tmp_path / "h.csv")
+
+
+def test_missing_column_is_named(tmp_path):
+    p = tmp_path / "m.csv"
+    cohort_frame().drop(columns="contact").to_csv(p, index=False)
+    with pytest.raises(DataFormatError, match=r"m\.csv: required column 'contact' missing"):
+        read_recordings(p)
+
+
+def test_semicolon_separator_hint(tmp_path):
+    p = tmp_path / "s.csv"
+    cohort_frame().to_csv(p, index=False, sep=";")
+    with pytest.raises(DataFormatError, match="';'"):
+        read_recordings(p)
+
+
+def test_non_number_cell_names_line_and_column(tmp_path):
+    p = write(tmp_path, cohort_frame())
+    lines = p.read_text().splitlines()
+    fields = lines[56].split(",")  # file line 57
+    fields[4] = "abc"  # column y
+    lines[56] = ",".join(fields)
+    p.write_text("\n".join(lines) + "\n")
+    with pytest.raises(DataFormatError, match=r"rec\.csv, line 57, column 'y': 'abc' is not a number"):
+        read_recordings(p)
+
+
+def test_line_numbers_count_blank_lines(tmp_path):
+    p = write(tmp_path, cohort_frame())
+    lines = p.read_text().splitlines()
+    lines.insert(3, "")  # a blank line 4 shifts the data below it
+    fields = lines[10].split(",")  # file line 11
+    fields[2] = "1,5".replace(",", ";")
+    lines[10] = ",".join(fields)
+    p.write_text("\n".join(lines) + "\n")
+    with pytest.raises(DataFormatError, match=r"line 11, column 't'"):
+        read_recordings(p)
+
+
+def test_wrong_number_of_fields(tmp_path):
+    p = write(tmp_path, cohort_frame())
+    lines = p.read_text().splitlines()
+    lines[5] += ",9"
+    p.write_text("\n".join(lines) + "\n")
+    with pytest.raises(DataFormatError, match=r"line 6"):
+        read_recordings(p)
+
+
+def test_empty_participant_and_bad_trial_number(tmp_path):
+    df = cohort_frame().astype({"participant": object})
+    df.loc[7, "participant"] = ""
+    with pytest.raises(DataFormatError, match=r"line 9, column 'participant': participant is empty"):
+        read_recordings(write(tmp_path, df, "p.csv"))
+    df = cohort_frame().astype({"trial": float})
+    p = tmp_path / "t.csv"
+    df.assign(trial=df.trial.where(df.index != 3, 1.5)).to_csv(p, index=False)
+    with pytest.raises(DataFormatError, match=r"line 5, column 'trial': trial is 1.5, not an integer"):
+        read_recordings(p)
+
+
+def test_contact_must_be_0_or_1(tmp_path):
+    df = cohort_frame()
+    df.loc[12, "contact"] = 2
+    with pytest.raises(DataFormatError, match=r"line 14, column 'contact': contact must be 0 or 1, got 2"):
+        read_recordings(write(tmp_path, df))
+
+
+@pytest.mark.parametrize("factor", [1000.0, 100.0])
+def test_positions_in_millimetres_or_centimetres(tmp_path, factor):
+    df = cohort_frame()
+    df[["x", "y", "z"]] *= factor
+    with pytest.raises(DataFormatError, match="look like millimetres.*divide millimetres by 1000"):
+        read_recordings(write(tmp_path, df))
+
+
+def test_time_in_milliseconds(tmp_path):
+    df = cohort_frame()
+    df["t"] *= 1000
+    with pytest.raises(DataFormatError, match="milliseconds.*divide t by 1000"):
+        read_recordings(write(tmp_path, df))
+
+
+def test_mixed_sampling_rates_in_one_file(tmp_path):
+    df = pd.concat([cohort_frame(1, 4), cohort_frame(1, 4, fs=120.0).assign(participant=2)], ignore_index=True)
+    with pytest.raises(DataFormatError, match=r"mixed sampling rates \(4 trials at 60 Hz, 4 trials at 120 Hz\)"):
+        read_recordings(write(tmp_path, df))
+
+
+# --- trial-level problems mark the trial invalid -------------------------------------------------
+
+def bad_trial(tmp_path, edit) -> tuple[str, str, object]:
+    """Cohort of 2 x 10 trials, ``edit(df)`` spoils participant 1 trial 2; returns its status and reason."""
+    df = cohort_frame(2, 10)
+    df = edit(df)
+    rec = read_recordings(write(tmp_path, df))
+    others = rec.trials[~((rec.trials.participant == 1) & (rec.trials.trial == 2))]
+    assert (others.status == "ok").all(), others[others.status != "ok"]
+    assert len(rec) == 20
+    return (*status(rec, 1, 2), rec)
+
+
+def rows_of(df, p=1, tr=2):
+    return df.index[(df.participant == p) & (df.trial == tr)]
+
+
+def test_time_going_backwards(tmp_path):
+    def edit(df):
+        i = rows_of(df)[10]
+        df.loc[i, "t"] = df.loc[i - 2, "t"]
+        return df
+    st_, reason, _ = bad_trial(tmp_path, edit)
+    assert st_ == "invalid" and reason.startswith("time goes backwards at line 52")
+
+
+def test_repeated_time_stamp(tmp_path):
+    def edit(df):
+        i = rows_of(df)[10]
+        df.loc[i, "t"] = df.loc[i - 1, "t"]
+        return df
+    st_, reason, _ = bad_trial(tmp_path, edit)
+    assert st_ == "invalid" and reason.startswith("time stamp repeated at line 52")
+
+
+@pytest.mark.parametrize("value, word", [(np.nan, "missing"), (np.inf, "infinite")])
+def test_nan_or_inf_position(tmp_path, value, word):
+    def edit(df):
+        df.loc[rows_of(df)[5], "z"] = value
+        return df
+    st_, reason, _ = bad_trial(tmp_path, edit)
+    assert (st_, reason) == ("invalid", f"z is {word} (NaN) at line 47" if word == "missing"
+                             else "z is infinite at line 47")
+
+
+def test_empty_position_cell_is_nan(tmp_path):
+    p = write(tmp_path, cohort_frame(2, 10))
+    lines = p.read_text().splitlines()
+    f = lines[46].split(",")
+    f[3] = ""
+    lines[46] = ",".join(f)
+    p.write_text("\n".join(lines) + "\n")
+    assert status(read_recordings(p), 1, 2) == ("invalid", "x is missing (NaN) at line 47")
+
+
+def test_too_few_samples(tmp_path):
+    def edit(df):
+        return df.drop(rows_of(df)[3:])
+    st_, reason, _ = bad_trial(tmp_path, edit)
+    assert (st_, reason) == ("invalid", "too few samples (3; need at least 5)")
+
+
+def test_rows_not_contiguous(tmp_path):
+    def edit(df):
+        r = rows_of(df)
+        moved = df.loc[r[30:]]
+        return pd.concat([df.drop(r[30:]), moved], ignore_index=True)
+    st_, reason, _ = bad_trial(tmp_path, edit)
+    assert st_ == "invalid" and reason.startswith("rows not contiguous: line 42 to 71 and from line")
+
+
+def test_trial_at_another_rate(tmp_path):
+    def edit(df):
+        r = rows_of(df)
+        df.loc[r, "t"] = np.arange(len(r)) / 30.0
+        return df
+    st_, reason, _ = bad_trial(tmp_path, edit)
+    assert st_ == "invalid" and reason.startswith("sampled at 30.0 Hz, the file at 60.0 Hz")
+
+
+def test_gap_in_a_trial(tmp_path):
+    def edit(df):
+        r = rows_of(df)
+        df.loc[r[20:], "t"] += 2 / 60
+        return df
+    st_, reason, _ = bad_trial(tmp_path, edit)
+    assert st_ == "invalid" and reason.startswith("irregular sampling: interval of 0.0500 s before line 62")
+
+
+def test_single_trial_with_huge_span(tmp_path):
+    def edit(df):
+        df.loc[rows_of(df)[12], "x"] = 5.0
+        return df
+    st_, reason, _ = bad_trial(tmp_path, edit)
+    assert st_ == "invalid" and reason.startswith("positions span 4.99 m")
+
+
+def test_missing_contact_flag(tmp_path):
+    def edit(df):
+        df["contact"] = df["contact"].astype(float)
+        df.loc[rows_of(df)[33], "contact"] = np.nan
+        return df
+    st_, reason, _ = bad_trial(tmp_path, edit)
+    assert (st_, reason) == ("invalid", "contact flag missing at line 75")
+
+
+def test_frame_input_names_rows_not_lines():
+    df = cohort_frame(1, 2)
+    df.loc[3, "y"] = np.nan
+    rec = recordings_from_frame(df)
+    assert status(rec, 1, 1) == ("invalid", "y is missing (NaN) at row 3")
+    with pytest.raises(DataFormatError, match="<DataFrame>: required column 't' missing"):
+        recordings_from_frame(df.drop(columns="t"))
+
+
+@settings(max_examples=25, deadline=None)
+@given(order=st.permutations(list(range(6))))
+def test_trial_order_does_not_change_validation(order):
+    """Shuffling whole trials (each kept contiguous) changes neither statuses nor the sampling rate."""
+    trials = [trial_frame(p, tr) for p in (1, 2) for tr in (1, 2, 3)]
+    trials[4].loc[trials[4].index[7], "t"] = 0.0  # one invalid trial
+    base = recordings_from_frame(pd.concat(trials, ignore_index=True))
+    shuffled = recordings_from_frame(pd.concat([trials[i] for i in order], ignore_index=True))
+    key = ["participant", "trial"]
+    a = base.trials.set_index(key)[["status"]].sort_index()
+    b = shuffled.trials.set_index(key)[["status"]].sort_index()
+    pd.testing.assert_frame_equal(a, b)
+    assert shuffled.fs == base.fs
