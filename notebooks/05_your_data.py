@@ -38,7 +38,6 @@ from pathlib import Path
 import pandas as pd
 from IPython.display import Image, display
 
-import skilllib
 from skilllib.cohort import CohortModel, generate_cohort
 from skilllib.data import COLUMNS, write_recordings
 

@@ -1,0 +1,100 @@
+"""Figures of the clustering chapter: silhouette sweep, silhouette plots, clusters, prototypes."""
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from ..prototypes import PrototypeResult, SilhouetteSweep
+from ._common import CLUSTER_COLORS
+
+
+def _cluster_color(c: int) -> tuple[float, float, float]:
+    """Colour of cluster ``c``; CLUSTER_COLORS repeats beyond its length (k > 10)."""
+    return CLUSTER_COLORS[int(c) % len(CLUSTER_COLORS)]
+
+
+def plot_silhouette_sweep(sweep: SilhouetteSweep, chosen_k: int | None = None) -> plt.Figure:
+    """Average silhouette (Rousseeuw 1987) against k; filled markers = valid k (average > 0 and every
+    cluster has a trial above the average, as in scikit-learn's silhouette example), open = not valid."""
+    ks, scores = sweep.ks, sweep.scores
+    valid = np.array([sweep.results[k].valid for k in ks])
+    fig, ax = plt.subplots(figsize=(5.5, 3.4))
+    ax.plot(ks, scores, color="0.6", lw=1, zorder=1)
+    ax.scatter(ks[valid], scores[valid], color="k", zorder=2, label="valid")
+    ax.scatter(ks[~valid], scores[~valid], facecolor="white", edgecolor="k", zorder=2,
+               label="not valid: a cluster lies wholly below the average")
+    if chosen_k is not None and chosen_k in sweep.results:
+        ax.axvline(chosen_k, color=CLUSTER_COLORS[3], ls="--", lw=1,
+                   label=f"k = {chosen_k} (average {sweep.results[chosen_k].silhouette:.3f})")
+    ax.set_xticks(ks)
+    ax.set_xlabel("number of clusters k")
+    ax.set_ylabel("average silhouette")
+    ax.legend(fontsize="small", frameon=False)
+    return fig
+
+
+def plot_silhouettes(result: PrototypeResult) -> plt.Figure:
+    """Silhouette plot ("knife plot", as in scikit-learn's example) of one clustering: each cluster's
+    trial silhouettes sorted, the average as a dashed line; clusters marked * lie wholly below it."""
+    s, labels, avg = result.silhouette_samples, result.labels, result.silhouette
+    failing = set(result.failing_clusters())
+    gap = max(2, len(s) // 60)
+    fig, ax = plt.subplots(figsize=(5, 3 + 0.1 * result.k))
+    y0 = gap
+    for c in range(result.k):
+        sc = np.sort(s[labels == c])
+        ax.fill_betweenx(np.arange(y0, y0 + len(sc)), 0, sc, color=_cluster_color(c), lw=0)
+        ax.text(-0.02, y0 + len(sc) / 2, f"{c}*" if c in failing else str(c), ha="right", va="center",
+                fontsize="small" if result.k <= 10 else "x-small")
+        y0 += len(sc) + gap
+    ax.axvline(avg, color="k", ls="--", lw=1)
+    ax.axvline(0, color="0.5", lw=0.5)
+    ax.set_xlim(min(-0.1, float(s.min()) - 0.05), 1)
+    ax.set_ylim(0, y0)
+    ax.set_yticks([])
+    ax.set_xlabel("silhouette coefficient")
+    ax.set_ylabel("trials, by cluster (0 = lowest PV)")
+    note = "; * no trial above it" if failing else ""
+    ax.set_title(f"k = {result.k} ({result.method}, {result.scaling} features): "
+                 f"average {avg:.3f} (dashed){note}", fontsize="small")
+    return fig
+
+
+def plot_clusters(result: PrototypeResult) -> plt.Figure:
+    """PV-SPARC tuples coloured by cluster, with the centres (x) and the prototype trials (circled):
+    the paper's Fig. 2a, clusters numbered by centre PV."""
+    d = result.data
+    fig, ax = plt.subplots(figsize=(5.5, 4))
+    for c in range(result.k):
+        m = d["cluster"].to_numpy() == c
+        ax.scatter(d.loc[m, "pv"], d.loc[m, "sparc"], s=10, alpha=0.6, color=_cluster_color(c), lw=0,
+                   label=f"cluster {c} (n = {int(result.sizes[c])})")
+    ax.scatter(result.centres["pv"], result.centres["sparc"], marker="X", s=90, color="k",
+               edgecolor="white", lw=0.8, label="centre", zorder=3)
+    ax.scatter(result.prototypes["pv"], result.prototypes["sparc"], marker="o", s=110, facecolor="none",
+               edgecolor="k", lw=1.5, label="prototype (trial nearest the centre)", zorder=4)
+    ax.set_xlabel("peak speed PV (m/s)")
+    ax.set_ylabel("SPARC")
+    ax.legend(fontsize="x-small", frameon=False, loc="center left", bbox_to_anchor=(1.01, 0.5))
+    return fig
+
+
+def plot_prototype_profiles(profiles: list[tuple[np.ndarray, np.ndarray]], prototypes: pd.DataFrame,
+                            ) -> plt.Figure:
+    """Speed profiles of the prototypes labelled with their PV and SPARC: the paper's Fig. 2b.
+
+    ``profiles[i]`` is (t in s, speed in m/s) of the prototype of cluster i, in the row order of
+    ``prototypes`` (``PrototypeResult.prototypes``: columns pv, sparc; index = cluster id).
+    """
+    if len(profiles) != len(prototypes):
+        raise ValueError(f"{len(profiles)} speed profiles for {len(prototypes)} prototypes")
+    fig, ax = plt.subplots(figsize=(5.5, 3.6))
+    for (c, p), (t, v) in zip(prototypes.iterrows(), profiles):
+        ax.plot(np.asarray(t), np.asarray(v), color=_cluster_color(c), lw=1.6,
+                label=f"cluster {c}: PV = {p['pv']:.2f} m/s, SPARC = {p['sparc']:.2f}")
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("speed (m/s)")
+    ax.set_ylim(bottom=0)
+    ax.legend(fontsize="x-small", frameon=False)
+    return fig
