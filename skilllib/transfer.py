@@ -351,7 +351,7 @@ def transfer(robot: rtb.Robot | str, t: np.ndarray, positions: np.ndarray, veloc
 def transfer_summary(results: list[TransferResult]) -> dict[str, Any]:
     """The ``transfer`` block of results.json for results on one arm from one start pose.
 
-    Keys: ``robot``, ``q0_deg``, ``qd_limits`` (rad/s) and ``prototypes`` (one
+    Keys: ``robot``, ``q0_deg`` (deg, rounded to 1e-9), ``qd_limits`` (rad/s) and ``prototypes`` (one
     :meth:`TransferResult.summary` per result, in the given order).
     """
     if not results:
@@ -362,7 +362,7 @@ def transfer_summary(results: list[TransferResult]) -> dict[str, Any]:
             raise ValueError("all results must come from the same robot and start pose q0")
     return {
         "robot": first.robot,
-        "q0_deg": [float(v) for v in np.rad2deg(first.q0)],
+        "q0_deg": [round(float(v), 9) + 0.0 for v in np.rad2deg(first.q0)],  # -60, not -59.99999999999999
         "qd_limits": [float(v) for v in first.qd_limits],
         "prototypes": [r.summary() for r in results],
     }

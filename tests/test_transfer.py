@@ -214,6 +214,21 @@ def test_unreachable_path_is_flagged_not_silent():
     assert summary["flags"][0] == {"sample": bad[0], "reason": r.flags[0]["reason"]}
 
 
+def test_ik_residual_check_is_applied(monkeypatch):
+    # with an impossible tolerance every sample the solver cannot hit exactly must be flagged, not kept
+    import skilllib.transfer as tr
+
+    t, p, v = minimum_jerk_descent(0.2, 1.0)
+    t, p, v = t[:6], p[:6], v[:6]
+    monkeypatch.setattr(tr, "IK_RESIDUAL_TOL_M", 0.0)
+    r = tr.transfer("simple6", t, p, v)
+    failed = [f["sample"] for f in r.flags if f["reason"].startswith("ik_failed")]
+    assert failed and 0 not in failed  # sample 0 is the start pose itself: residual exactly 0
+    assert failed == list(range(failed[0], len(t)))
+    assert np.all(r.ik_residual_m[failed] > 0) and np.all(np.isnan(r.qd[failed]))
+    assert "best position residual" in r.flags[0]["reason"]
+
+
 def test_ill_conditioned_is_flagged_and_computed():
     t, p, v = minimum_jerk_descent(0.2, 1.0)
     r = transfer("simple6", t, p, v, cond_threshold=3.0)  # cond J is about 3.4 along this path
@@ -299,8 +314,18 @@ def test_transfer_figures():
     ax = fig_qd.axes[0]
     assert ax.get_ylabel() == "joint velocity (rad/s)" and "(s)" in fig_qd.axes[-1].get_xlabel()
     assert len(ax.get_lines()) >= 6 + 2  # six joints, +-limit
+    texts = {t.get_text() for ax in fig.axes for t in ax.texts}
+    assert {f"$q_{j}$" for j in range(1, 7)} | {"$x_t$", "$y_t$", "$z_t$"} <= texts  # joints and tool frame labelled
     fig_map = figures.plot_frame_mapping(simple6(), res[0])
     assert fig_map.axes[0].get_xlabel() == "x (m)"
+    assert "$y_e$ up" in {t.get_text() for t in fig_map.axes[0].texts}
+    arms = [(get_robot(n).robot, transfer(n, *minimum_jerk_descent(0.15, 0.5))) for n in ("ur5", "panda")]
+    fig_arms = figures.robot.plot_start_poses(arms)
+    assert len(fig_arms.axes) == 2 and all(ax.get_zlabel() == "z (m)" for ax in fig_arms.axes)
+    assert "Panda" in fig_arms.axes[1].get_title()
+    plt.close(fig_arms)
+    with pytest.raises(ValueError):
+        figures.robot.plot_start_poses([])
     # drawing with roboticstoolbox must not switch the book's matplotlib style to ggplot
     assert plt.rcParams["axes.facecolor"] == style_before
     for f in (fig, fig_qd, fig_map):

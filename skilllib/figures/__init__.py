@@ -28,6 +28,7 @@ from .robot import (
     plot_robot_joints,
     plot_robot_pose,
     plot_simple6_figure,
+    plot_start_poses,
 )
 from .smoothness import plot_sparc_against, plot_sparc_spectra, plot_speeds_and_spectra
 
@@ -37,5 +38,6 @@ __all__ = [
     "plot_trials_by_participant", "plot_segmentation", "plot_participant_features", "plot_contact_speeds",
     "plot_feature_space", "plot_feature_overview", "plot_estimates_vs_truth",
     "plot_silhouette_sweep", "plot_silhouettes", "plot_clusters", "plot_prototype_profiles",
-    "plot_robot_joints", "plot_robot_pose", "plot_simple6_figure", "plot_joint_velocities", "plot_frame_mapping",
+    "plot_robot_joints", "plot_robot_pose", "plot_simple6_figure", "plot_start_poses",
+    "plot_joint_velocities", "plot_frame_mapping",
 ]

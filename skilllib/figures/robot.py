@@ -34,9 +34,7 @@ def _metre_labels(ax: plt.Axes) -> None:
 
 def _draw_robot(ax: plt.Axes, robot: rtb.DHRobot, q: np.ndarray, limits: list[float], **plot_kwargs) -> None:
     """Draw ``robot`` at ``q`` on the 3-D axes ``ax`` with roboticstoolbox's PyPlot backend."""
-    kw = dict(jointaxes=False, eeframe=True, shadow=False, name=False,
-              options={"eelength": 0.15 * (limits[1] - limits[0]), "eex": {"linewidth": 2.5},
-                       "eey": {"linewidth": 2.5}, "eez": {"linewidth": 2.5}})
+    kw = dict(jointaxes=False, eeframe=False, shadow=False, name=False)
     kw.update(plot_kwargs)
     robot.plot(np.asarray(q, dtype=float), backend="pyplot", block=False, ax=ax, limits=limits, **kw)
     _metre_labels(ax)
@@ -49,12 +47,24 @@ def _draw_robot(ax: plt.Axes, robot: rtb.DHRobot, q: np.ndarray, limits: list[fl
 
 
 def _label_joints(ax: plt.Axes, robot: rtb.DHRobot, q: np.ndarray, length: float) -> None:
-    """Arrows along the joint axes of a standard-DH arm, labelled q1..qn beyond their tips."""
+    """Arrows along the joint axes of a standard-DH arm from the joint origins (black dots),
+    labelled q1..qn beyond their tips on a white box (co-located axes stay legible)."""
     pos, axes = joint_origins(robot, q)
+    ax.scatter(*np.unique(pos.round(9), axis=0).T, color="k", s=18, zorder=12, depthshade=False)
     for j, (p, a) in enumerate(zip(pos, axes)):
         c = JOINT_COLORS[j % len(JOINT_COLORS)]
-        ax.quiver(*p, *(a * length), color=c, lw=2, arrow_length_ratio=0.2)
-        ax.text(*(p + a * length * 1.3), f"$q_{j + 1}$", color=c, fontsize=13, ha="center", va="center")
+        ax.quiver(*p, *(a * length), color=c, lw=2.2, arrow_length_ratio=0.18)
+        ax.text(*(p + a * length * 1.38), f"$q_{j + 1}$", color=c, fontsize=13, ha="center", va="center",
+                zorder=20, bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
+
+
+def _label_tool_frame(ax: plt.Axes, T: np.ndarray, length: float) -> None:
+    """The tool frame of the 4x4 pose ``T``: arrows x_t (red), y_t (green), z_t (blue), labelled."""
+    for k, (name, c) in enumerate((("x", "#d62728"), ("y", "#2ca02c"), ("z", "#1f77b4"))):
+        a = T[:3, k] * length
+        ax.quiver(*T[:3, 3], *a, color=c, lw=2.2, arrow_length_ratio=0.18)
+        ax.text(*(T[:3, 3] + a * 1.38), f"${name}_t$", color=c, fontsize=12, ha="center", va="center",
+                zorder=20, bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
 
 
 def plot_robot_joints(robot: rtb.DHRobot | None = None, q: np.ndarray | None = None, ax: plt.Axes | None = None,
@@ -73,8 +83,8 @@ def plot_robot_joints(robot: rtb.DHRobot | None = None, q: np.ndarray | None = N
     limits = _auto_limits(pts, 0.3 * reach)
     fig = plt.figure(figsize=(5.5, 5.5)) if ax is None else ax.figure
     ax = ax or fig.add_subplot(111, projection="3d", proj_type="ortho")
-    _draw_robot(ax, robot, q, limits, eeframe=False)
-    _label_joints(ax, robot, q, 0.2 * reach)
+    _draw_robot(ax, robot, q, limits)
+    _label_joints(ax, robot, q, 0.25 * reach)
     ax.view_init(elev=view[0], azim=view[1])
     ax.set_title(f"{robot.name}: joint axes", fontsize="medium")
     return fig
@@ -83,8 +93,8 @@ def plot_robot_joints(robot: rtb.DHRobot | None = None, q: np.ndarray | None = N
 def plot_robot_pose(robot: rtb.DHRobot | None = None, q: np.ndarray | None = None, ax: plt.Axes | None = None,
                     view: tuple[float, float] = (18.0, -70.0)) -> plt.Figure:
     """An arm in a pose (default: Simple6 at the paper's default pose ``DEFAULT_POSE_DEG``):
-    paper Fig. 3b. The tool frame is drawn (x red, y green, z blue); the tool point (m) and the
-    joint angles (deg) are written on the figure. Axes in m."""
+    paper Fig. 3b. The tool frame is drawn (x_t red, y_t green, z_t blue); the tool point (m) and
+    the joint angles (deg) are written on the figure. Axes in m."""
     robot = simple6() if robot is None else robot
     q = default_pose() if q is None else np.asarray(q, dtype=float)
     pos, _ = joint_origins(robot, q)
@@ -94,11 +104,10 @@ def plot_robot_pose(robot: rtb.DHRobot | None = None, q: np.ndarray | None = Non
     fig = plt.figure(figsize=(5.5, 5.5)) if ax is None else ax.figure
     ax = ax or fig.add_subplot(111, projection="3d", proj_type="ortho")
     _draw_robot(ax, robot, q, limits)
-    ax.scatter(*tool, color="k", s=20, zorder=10)
-    ax.text(*(tool + np.array([0.0, 0.0, 0.12]) * reach), f"tool ({tool[0]:.2f}, {tool[1]:.2f}, {tool[2]:.2f}) m",
-            fontsize="small", ha="center")
-    ax.text2D(0.02, 0.97, "tool frame: x red, y green, z blue; base ▲", transform=ax.transAxes,
-              fontsize="small", va="top")
+    _label_tool_frame(ax, robot.fkine(q).A, 0.25 * reach)
+    ax.scatter(*tool, color="k", s=20, zorder=12, depthshade=False)
+    ax.text2D(0.02, 0.97, f"tool point ({tool[0]:.2f}, {tool[1]:.2f}, {tool[2]:.2f}) m, "
+              "tool frame $x_t, y_t, z_t$; base ▲", transform=ax.transAxes, fontsize="small", va="top")
     ax.view_init(elev=view[0], azim=view[1])
     deg = ", ".join(f"{v:g}" for v in np.round(np.rad2deg(q), 1))
     ax.set_title(f"{robot.name} at q = ({deg}) deg", fontsize="medium")
@@ -148,7 +157,7 @@ def plot_joint_velocities(results: list[TransferResult], qd_limits: float | np.n
             who = "" if joints.size == n else " ($q_{" + ",".join(str(j) for j in joints) + "}$)"
             for sgn in (1, -1):
                 ax.axhline(sgn * value, color=("k", "0.45", "0.7")[g % 3], ls=("--", "-.", ":")[g % 3], lw=0.9,
-                           label=f"limit ±{value:.3g} rad/s{who}" if sgn > 0 else None)
+                           label=f"limit ±{value:.4g} rad/s{who}" if sgn > 0 else None)
         bad = sorted({f["sample"] for f in r.flags})
         if bad:
             ax.plot(t[bad], np.zeros(len(bad)), "x", color="r", ms=6, label="flagged sample")
@@ -207,16 +216,50 @@ def plot_frame_mapping(robot: rtb.DHRobot, result: TransferResult, rotation: np.
     for k, name in enumerate(("x", "y", "z")):
         e = np.eye(3)[k] * L
         ax.quiver(0, 0, 0, *e, color="0.3", lw=1.5, arrow_length_ratio=0.15)
-        ax.text(*(e * 1.15), f"${name}_0$", color="0.3", fontsize=11, ha="center", va="center")
+        ax.text(*(e * 1.15), f"${name}_0$", color="0.3", fontsize=11, ha="center", va="center",
+                bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
     exp_names = ("$x_e$ mediolateral", "$y_e$ up", "$z_e$ anteroposterior")
     for k in range(3):
         e = R[:, k] * L * 0.8
         c = JOINT_COLORS[k]
         ax.quiver(*x[0], *e, color=c, lw=2, arrow_length_ratio=0.15)
-        ax.text(*(x[0] + e * 1.2), exp_names[k], color=c, fontsize=9, ha="center", va="center")
-    ax.plot([], [], color="#E16F6D", lw=4, label="arm at the start pose q0")
+        ax.text(*(x[0] + e * 1.2), exp_names[k], color=c, fontsize=9, ha="center", va="center",
+                bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
+    ax.plot([], [], color="#E16F6D", lw=4, label="arm at the start pose $q_0$")
     ax.plot([], [], color="0.6", lw=4, label="arm at the last sample")
     ax.view_init(elev=view[0], azim=view[1])
     ax.set_title(f"{result.robot}: experiment frame (coloured) in the base frame (grey)", fontsize="medium")
-    ax.legend(loc="upper left", fontsize="small", frameon=False)
+    fig.legend(*ax.get_legend_handles_labels(), loc="lower center", bbox_to_anchor=(0.5, 0.07), ncol=3,
+               fontsize="small", frameon=False)
+    return fig
+
+
+def plot_start_poses(arms: list[tuple[rtb.Robot, TransferResult]],
+                     view: tuple[float, float] = (20.0, -55.0)) -> plt.Figure:
+    """Several arms, one panel each, at their start pose ``result.q0`` with the hand path
+    ``result.x_base`` (m, base frame; black) that the transfer made them follow.
+
+    ``arms`` holds (robot, result) pairs; the title gives the start pose (deg) and cond J there.
+    Drawn with roboticstoolbox's PyPlot backend; axes in m.
+    """
+    if not arms:
+        raise ValueError("plot_start_poses needs at least one (robot, TransferResult) pair")
+    fig = plt.figure(figsize=(3.6 * len(arms), 4.2))
+    for i, (robot, r) in enumerate(arms):
+        ax = fig.add_subplot(1, len(arms), i + 1, projection="3d", proj_type="ortho")
+        frames = robot.fkine_all(r.q0)
+        pts = np.vstack([np.array([T.t for T in frames]), r.x_base, np.zeros(3)])
+        limits = _auto_limits(pts, 0.1 * float(np.ptp(pts, axis=0).max()))
+        _draw_robot(ax, robot, r.q0, limits)
+        flange, tool = frames[-1].t, robot.fkine(r.q0).t
+        if np.linalg.norm(tool - flange) > 1e-9:  # a tool offset (Panda): drawn thinner
+            ax.plot(*np.c_[flange, tool], color="#E16F6D", lw=2)
+        ax.plot(*r.x_base.T, color="k", lw=3, zorder=20)
+        ax.scatter(*r.x_base[-1], color="k", marker="v", s=30, zorder=21, depthshade=False)
+        ax.view_init(elev=view[0], azim=view[1])
+        cond = np.linalg.cond(robot.ets().jacob0(r.q0))
+        deg = ", ".join(f"{v:.0f}" for v in np.rad2deg(r.q0))
+        ax.set_title(f"{r.robot}\n$q_0$ = ({deg}) deg\ncond J = {cond:.1f}", fontsize="small")
+        ax.tick_params(labelsize="x-small", pad=0)
+    fig.subplots_adjust(left=0.0, right=0.95, wspace=0.25)
     return fig
