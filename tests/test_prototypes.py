@@ -330,4 +330,25 @@ def test_figures(tmp_path, data):
         F.plot_prototype_profiles(prof[:5], r.prototypes)
     paths = F.save(fig, tmp_path, "profiles")
     assert all(p.stat().st_size > 0 for p in paths)
+    from skilllib.figures.clusters import plot_stability
+
+    ax = plot_stability({"seeds, raw": np.array([1.0, 0.9]), "bootstrap": np.array([0.5, 0.7, 0.6])}).axes[0]
+    assert ax.get_ylabel() == "adjusted Rand index" and len(ax.collections) == 4  # 2 strips + 2 medians
+    assert [t.get_text() for t in ax.get_xticklabels()] == ["seeds\nraw", "bootstrap"]
+    with pytest.raises(ValueError, match="no ARI"):
+        plot_stability({})
     plt.close("all")
+
+
+# --- threads ----------------------------------------------------------------------------------
+
+def test_fits_run_single_threaded_and_restore_limits():
+    from threadpoolctl import threadpool_info
+
+    from skilllib.prototypes import _single_threaded
+
+    before = [(i["internal_api"], i["num_threads"]) for i in threadpool_info()]
+    inside = _single_threaded(lambda: [i["num_threads"] for i in threadpool_info()])()
+    assert inside and all(n == 1 for n in inside)
+    fit_prototypes(blobs(n_per=5)[0], 3)
+    assert [(i["internal_api"], i["num_threads"]) for i in threadpool_info()] == before

@@ -10,7 +10,13 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 
 from ._common import CLUSTER_COLORS, save
-from .clusters import plot_clusters, plot_prototype_profiles, plot_silhouette_sweep, plot_silhouettes
+from .clusters import (
+    plot_clusters,
+    plot_prototype_profiles,
+    plot_silhouette_sweep,
+    plot_silhouettes,
+    plot_stability,
+)
 from .experiment import (
     PARTICIPANT_COLORS,
     plot_contact_speeds,
@@ -37,7 +43,7 @@ __all__ = [
     "plot_sparc_spectra", "plot_speeds_and_spectra", "plot_sparc_against",
     "plot_trials_by_participant", "plot_segmentation", "plot_participant_features", "plot_contact_speeds",
     "plot_feature_space", "plot_feature_overview", "plot_estimates_vs_truth",
-    "plot_silhouette_sweep", "plot_silhouettes", "plot_clusters", "plot_prototype_profiles",
+    "plot_silhouette_sweep", "plot_silhouettes", "plot_clusters", "plot_prototype_profiles", "plot_stability",
     "plot_robot_joints", "plot_robot_pose", "plot_simple6_figure", "plot_start_poses",
     "plot_joint_velocities", "plot_frame_mapping",
 ]

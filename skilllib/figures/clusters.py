@@ -98,3 +98,22 @@ def plot_prototype_profiles(profiles: list[tuple[np.ndarray, np.ndarray]], proto
     ax.set_ylim(bottom=0)
     ax.legend(fontsize="x-small", frameon=False)
     return fig
+
+
+def plot_stability(ari: dict[str, np.ndarray], seed: int = 0) -> plt.Figure:
+    """Adjusted Rand indices (dimensionless, 1 = same partition) as one jittered strip per entry of
+    ``ari`` (e.g. refits with other seeds or on bootstrap resamples, see
+    :func:`skilllib.prototypes.seed_stability` and :func:`~skilllib.prototypes.bootstrap_stability`),
+    each with its median as a black bar. ``", "`` in a name becomes a line break; ``seed`` fixes the jitter.
+    """
+    if not ari:
+        raise ValueError("no ARI series to plot")
+    fig, ax = plt.subplots(figsize=(7, 3.4))
+    jitter = np.random.default_rng(seed)
+    for i, a in enumerate(np.asarray(v, dtype=float) for v in ari.values()):
+        ax.scatter(i + jitter.uniform(-0.15, 0.15, a.size), a, s=14, alpha=0.7, color="C0")
+        ax.hlines(np.median(a), i - 0.3, i + 0.3, color="k", lw=1.5)
+    ax.set_xticks(range(len(ari)), [n.replace(", ", "\n") for n in ari], fontsize="small")
+    ax.set_ylabel("adjusted Rand index")
+    ax.set_ylim(top=1.02)
+    return fig
