@@ -215,6 +215,9 @@ def build(project: Path, build_dir: Path, execute: bool, timeout: int, chapter_n
             else:
                 log(f"warning: {rel} was never executed; staging it without outputs (--no-execute)")
                 nb = read_notebook(src, rel)
+            # Jupytext's pairing settings mean nothing to myst (it warns about them) or to a reader who
+            # downloads the notebook: the staged copy leaves them out.
+            nb.metadata.pop("jupytext", None)
             if chapter:
                 number_notebook(nb, chapter)
             dst.parent.mkdir(parents=True, exist_ok=True)
