@@ -32,13 +32,13 @@
 # ```
 
 # %%
+import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-import matplotlib.pyplot as plt
 
+from skilllib.figures import plot_sparc_against, plot_sparc_spectra, plot_speeds_and_spectra
 from skilllib.smoothness import (SPARC_PARAMS, ldlj, ldlj_many, minimum_jerk_speed, nfft, sparc,
                                  sparc_many, sparc_spectrum)
-from skilllib.figures import plot_sparc_against, plot_sparc_spectra, plot_speeds_and_spectra
 
 FS = 60.0  # Hz, the sampling rate of the experiment
 
@@ -74,8 +74,8 @@ profiles = {"one submovement": one, "two, 0.3 s apart": movement([0, 0.3]),
 fig, ax = plt.subplots(figsize=(5.5, 3.2))
 for label, v in profiles.items():
     ax.plot(np.arange(v.size) / FS, v, ".-", ms=3, label=label)
-ax.set(xlabel="time t (s)", ylabel="speed v (m/s)")
-ax.legend(frameon=False)
+ax.set(xlabel="time t (s)", ylabel="speed v (m/s)", ylim=(0, 0.47))
+ax.legend(frameon=False, loc="upper right")
 print(f"peak speed of one submovement: {one.max():.3f} m/s (1.875 D/T = {1.875 * 0.1 / 0.6:.3f})")
 
 # %% [markdown]
@@ -223,8 +223,9 @@ for p in range(7):
 # = -\sum_{k=0}^{K-1} \sqrt{\frac{1}{K^2} + (\hat V_{k+1} - \hat V_k)^2} .
 # $$ (eq-sparc-sum)
 #
-# This is what the authors' code computes, and `skilllib.sparc` with it (the test suite checks
-# the two against each other to $10^{-9}$ on more than a thousand profiles). Here it is by hand on one trial
+# This is what the authors' code computes, and `skilllib.sparc` with it (the test suite checks the two
+# against each other to $10^{-9}$ on generated bells, overlapping submovements, noisy and truncated
+# profiles and single samples, with other parameters and sampling rates). Here it is by hand on one trial
 # like those of the experiment: a 1 s minimum-jerk movement cut at contact at 0.8 s, at 60 Hz.
 
 # %%
@@ -257,6 +258,18 @@ print(f"5. SPARC by hand {-terms.sum():.12f}\n   skilllib.sparc {sparc(trial, FS
 w = 2 * np.pi * f[above[0]: above[-1] + 1]  # rad/s
 integrand = np.sqrt((1 / w[-1]) ** 2 + (np.diff(band) / np.diff(w)) ** 2)
 print(f"Riemann sum of the definition, in rad/s: {-np.sum(integrand * np.diff(w)):.12f}")
+
+# %% [markdown]
+# Two limiting cases follow from the sum. A single sample is an impulse: its spectrum is flat, every
+# vertical step is zero and SPARC is exactly $-1$. And if the grid step $f_s / n_{\mathrm{fft}}$ were
+# larger than $f_c$, the band would be bin 0 alone, $K = 0$, and the sum empty: the authors' code then
+# returns 0, and `skilllib` does the same. With padlevel 4 at 60 Hz the step is at most
+# $60/16$ Hz, below $f_c$, so this cannot happen in this book.
+
+# %%
+print(f"one sample at 60 Hz: SPARC = {sparc([0.3], FS):.12f}")
+print(f"largest grid step at 60 Hz (N = 1): {FS / nfft(1):.2f} Hz; "
+      f"one sample at 1000 Hz (step {1000 / nfft(1):.1f} Hz > fc): SPARC = {sparc([0.3], 1000.0):g}")
 
 # %% [markdown]
 # ## The minimum-jerk reference
@@ -472,14 +485,42 @@ print(f"ratio T = 1 s to T = 0.5 s: {sq[1.0][0] / sq[0.5][0]:.2f}; Hz to rad/s: 
 # %% [markdown]
 # The same smooth movement gets values eight times larger at every doubling of its duration, and
 # numbers that differ by $(2\pi)^3$ between Hz and rad/s (the cell above prints both ratios). For the
-# drifting submovements the value mostly tracks the growing duration. It cannot rank movements by
-# smoothness. The definition, and the authors' code, have the square root; so does this book.
+# drifting submovements the value mostly tracks the growing duration:
 
 # %%
 for d in (0.0, 0.3, 0.6, 1.0):
     v = movement([0, d])
     print(f"two submovements {d} s apart ({v.size / FS:.2f} s): SPARC {sparc(v, FS):.3f}, "
           f"squared version {squared_version(v, FS, 1.0):8.3f} (Hz)")
+
+# %% [markdown]
+# Reading the square into the dimensionless sum [](#eq-sparc-sum) instead, with
+# $(1/K^2 + \Delta\hat V_k^2)$ in place of its square root, fails differently. Each term is now of the
+# order of $1/K^2$, so the sum is of the order of $1/K$, and $K$, the number of bins in the band, is set
+# by the FFT grid: it halves with every padlevel less, and it changes with the number of samples $N$
+# between two powers of two, where $n_{\mathrm{fft}}$ stays the same. Below, the same minimum-jerk shape
+# lasting 0.55 to 1.05 s at 60 Hz (33 to 63 samples, one $n_{\mathrm{fft}}$) keeps its SPARC while the
+# squared sum changes with the duration and with padlevel.
+
+# %%
+def squared_sum(v, fs, padlevel=SPARC_PARAMS["padlevel"]):
+    """The discrete sum eq-sparc-sum with the printed square instead of the square root."""
+    s = sparc_spectrum(v, fs, padlevel=padlevel)
+    K = s.f_sel.size - 1
+    return -np.sum(1 / K**2 + np.diff(s.Mf_sel) ** 2)
+
+
+grid = {}
+for T in (0.55, 0.8, 1.05):
+    v = minimum_jerk_speed(np.arange(0, T, 1 / FS), 0, T)
+    grid[f"{T} s, N = {v.size}"] = {"nfft": nfft(v.size), "SPARC": sparc(v, FS),
+                                    **{f"squared, padlevel {p}": squared_sum(v, FS, p) for p in (3, 4)}}
+print(pd.DataFrame.from_dict(grid, orient="index").round(4))
+
+# %% [markdown]
+# In both readings the number depends on something other than the movement's shape (its duration and
+# the unit of frequency, or the FFT grid), so neither can rank movements by smoothness. The definition,
+# and the authors' code, have the square root; so does this book.
 
 # %% [markdown]
 # ## LDLJ beside SPARC
@@ -547,7 +588,7 @@ print("change from no noise, relative to that:\n", relative.round(2).loc[[1, 3, 
 # - The book uses the authors' parameters, $f_c$ = 10 Hz, threshold 0.05, padlevel 4 (`SPARC_PARAMS`).
 #   At 60 Hz they give the same values as a 20 Hz maximum on noise-free profiles and are less
 #   sensitive to noise.
-# - The squared integrand printed in the KI 2020 paper can only be a typesetting slip: it scales with
-#   the cube of the duration and with the frequency unit.
+# - The squared integrand printed in the KI 2020 paper can only be a typesetting slip: as an integral
+#   it scales with the cube of the duration and with the frequency unit, as a sum with the FFT grid.
 # - LDLJ measures the same intermittency but collapses with small amounts of measurement noise; SPARC
 #   does not.

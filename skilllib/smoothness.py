@@ -14,10 +14,10 @@ from __future__ import annotations
 
 import contextlib
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 from types import MappingProxyType
-from typing import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -173,11 +173,10 @@ def sparc_spectrum(speed: ArrayLike, fs: float, fc: float = DEFAULT_FC, amp_th: 
     n_fft = nfft(v.size, padlevel)
     f = frequencies(n_fft, fs)
     k = _n_kept(f, fc, n_fft)
-    Mf = np.abs(np.fft.fft(v, n_fft))
+    Mf = np.abs(np.fft.fft(v / np.abs(v).max(), n_fft))  # amplitude invariant; no overflow, as sparc_many
     peak = Mf.max()
-    if not (np.isfinite(peak) and peak > 0):
-        raise ValueError(f"speed spectrum peak is {peak}: values too large, or zero over the first "
-                         f"nfft = {n_fft} samples")
+    if not peak > 0:  # padlevel < 0: np.fft.fft(v, nfft) keeps only the first nfft samples
+        raise ValueError(f"speed is zero over its first nfft = {n_fft} samples: no spectrum to normalise")
     Mf = Mf / peak
     first, last, ok = _band(Mf[None, :k] >= amp_th)
     if not ok[0]:

@@ -30,10 +30,11 @@ def plot_sparc_spectra(spectra: Mapping[str, SparcSpectrum], ax: plt.Axes | None
         ax.axvline(first.fc, color="0.3", ls=":", lw=1)
         ax.text(first.fc, 1.02, f"fc = {first.fc:g} Hz", ha="center", va="bottom", fontsize="small")
     ax.set_xlim(0, fmax)
-    ax.set_ylim(0, 1.08)
+    ax.set_ylim(0, 1.1)
     ax.set_xlabel("frequency f (Hz)")
     ax.set_ylabel(r"normalised magnitude $|V(f)|\,/\,V(0)$")
-    ax.legend(fontsize="small", frameon=False, loc="upper right", bbox_to_anchor=(1, 0.93))
+    ax.legend(fontsize="small", loc="upper right", bbox_to_anchor=(1, 0.93), facecolor="white",
+              edgecolor="none", framealpha=0.9)  # the box hides the fc line behind the labels
     return fig
 
 
