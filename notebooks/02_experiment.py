@@ -26,9 +26,9 @@
 #
 # ```{note}
 # **The data in this chapter are synthetic.** The paper's recordings are not public. Every trial shown
-# here was made by the seeded generative model in `skilllib.cohort` (function `generate_cohort`, seed 2:
-# the first seed that meets every calibration target, see `data/README.md`), calibrated to the paper's
-# aggregate numbers, and committed as `data/cohort.csv`.
+# here was made by the seeded generative model in `skilllib.cohort` (function `generate_cohort`, seed 1:
+# the first seed that meets every calibration target, see below and `data/README.md`), calibrated to the
+# paper's aggregate numbers, and committed as `data/cohort.csv`.
 # Nothing here is a measurement of a person. The same loader and feature code run on real recordings in
 # the same format (see the chapter on your own data).
 # ```
@@ -39,6 +39,8 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from sklearn.cluster import KMeans
+from sklearn.metrics import silhouette_score
 
 from skilllib import cohort, data, features, figures
 from skilllib.prototypes import silhouette_sweep
@@ -139,7 +141,8 @@ print(f"generate_cohort(seed={synthetic.seed}) written again equals {COHORT_CSV.
 # away from 0.5 m/s, and an asymmetry and a correction rate. Their trial-to-trial variability has its
 # own size. The traits are drawn by Latin-hypercube sampling, so that ten participants cover each range
 # evenly. Each trial varies the start position inside a 2 cm start box, the duration, the intended
-# contact speed (log-normal), the corrections, and the rest before onset (0.3–0.6 s) and after contact
+# contact speed (log-normal; its tails below 0.2 m/s and above 1 m/s are compressed smoothly into
+# 0.1–1.8 m/s, as a hard clip would pile those trials up at one speed), the corrections, and the rest before onset (0.3–0.6 s) and after contact
 # (0.2–0.4 s).
 #
 # **Contact, off-axis motion and the device.** At the touch the tip meets a stiff virtual wall,
@@ -148,7 +151,7 @@ print(f"generate_cohort(seed={synthetic.seed}) written again equals {COHORT_CSV.
 # degrees, a lateral bow of a few millimetres per trial, and slow postural sway of at most 0.3 mm. White
 # noise at the device's 0.03 mm resolution is added on every axis, and samples are taken at 60 Hz.
 # Randomness comes from `numpy.random.default_rng` streams spawned from one seed: one stream for the
-# traits and one per participant.
+# traits and one per trial.
 #
 # The population parameters, as used for the committed cohort:
 
@@ -178,6 +181,50 @@ cohort.calibration_table(feats, sweep)
 
 # %%
 sweep.table().T
+
+# %% [markdown]
+# **How the seed was chosen, and what it hides.** With ten participants a cohort is a small sample, and
+# the calibration numbers vary from seed to seed as they would between two real cohorts. The model's
+# parameters were therefore tuned by their average over seeds, and the committed cohort uses the first
+# seed 0, 1, 2, ... that meets every target at once. `data/seed_survey.csv` holds the survey of seeds
+# 0–19 (`cohort.seed_survey(range(20))`, about 2 minutes, so not rerun here). The counts below show how
+# many seeds meet each target: the silhouette target is the one the model misses most often.
+
+# %%
+survey = pd.read_csv(cohort.SURVEY_CSV, index_col="seed")
+print(f"silhouette at k = 6 over {len(survey)} seeds: mean {survey.silhouette_k6.mean():.3f}, "
+      f"SD {survey.silhouette_k6.std():.3f}, range {survey.silhouette_k6.min():.3f}-{survey.silhouette_k6.max():.3f}; "
+      f"paper 0.337; committed cohort (seed {cohort.SEED}) {sweep.results[6].silhouette:.3f}")
+cohort.survey_summary(survey).to_frame("seeds meeting the target").T
+
+# %% [markdown]
+# So the model sits above the paper's 0.337 on average over seeds. The committed cohort meets the
+# 0.30–0.38 target because the seed rule demands it, not because the model centres on 0.337. The reason
+# is the shape of the cloud. Clustered raw, as the paper does, (PV, SPARC) is dominated by whichever
+# feature spreads more in its own units. In the synthetic cohort PV spreads about three times more than
+# SPARC (printed below), so K-means cuts the cloud into slices along PV. Slices of a one-dimensional
+# cloud give high silhouettes, and a round two-dimensional cloud gives values near the paper's. The cell compares the selected tuples with both extremes, using the paper's K-means and
+# silhouette. The paper's 0.337 is consistent with a (PV, SPARC) cloud closer to round than ours: the
+# synthetic SPARC of segments only 10–25 samples long varies little (see *What 60 Hz can tell* below).
+# The changes tried while calibrating (more corrections, later corrections, longer or less varied
+# durations) moved the average silhouette little, and the paper publishes nothing that would justify a
+# larger change. The book keeps the model and states the difference; the clustering chapter's
+# conclusions do not depend on the third decimal of this number.
+
+# %%
+def silhouette_k6(x):
+    """Average silhouette of K-means with k = 6 (scikit-learn, n_init = 10, random_state = 0)."""
+    return silhouette_score(x, KMeans(6, n_init=10, random_state=0).fit_predict(x))
+
+
+x = features.select(feats)[["pv", "sparc"]].to_numpy()
+sd = x.std(axis=0)
+round_cloud = np.random.default_rng(0).normal(size=x.shape)
+print(f"selected trials: SD of PV {sd[0]:.3f} m/s, SD of SPARC {sd[1]:.3f} (ratio {sd[0] / sd[1]:.1f})")
+pd.Series({"(PV, SPARC), raw: the calibration": silhouette_k6(x),
+           "PV alone (a one-dimensional cloud)": silhouette_k6(x[:, :1]),
+           "round Gaussian cloud of the same size": silhouette_k6(round_cloud)},
+          name="average silhouette, k = 6").to_frame()
 
 # %% [markdown]
 # ## The paper's Figure 1b, redrawn
@@ -211,8 +258,8 @@ fig = figures.plot_participant_features(feats)
 # %% [markdown]
 # ## From samples to a segment
 #
-# **Speed.** Velocity is the derivative of the positions by central differences (`numpy.gradient`,
-# second order inside and at the ends). Its norm is the speed. Only the samples *before* contact are
+# **Speed.** Velocity is the derivative of the positions by second-order finite differences
+# (`numpy.gradient`: central inside, three-point one-sided at the ends). Its norm is the speed. Only the samples *before* contact are
 # used: the impact is a velocity discontinuity, and a difference across it would mix the approach with
 # the rest on the surface. No low-pass filter is applied. Position noise at the device's resolution gives
 # a speed noise of about $0.03\,\text{mm} \times 60\,\text{Hz} / \sqrt{2} \approx 1.3$ mm/s, far below the
@@ -255,7 +302,7 @@ fig = figures.plot_segmentation(rec, feats, examples)
 # %% [markdown]
 # **What 60 Hz can tell.** Because the data are synthetic, the generator's noise-free ground truth is
 # known, and the estimates can be checked against it ([](#fig-truth)). PV agrees closely. The contact
-# speed is the mean speed over the last sampling interval before the touch, which ends up to one interval
+# speed is the speed at the last sample before the touch, which lies up to one sampling interval
 # (16.7 ms) before contact. On a decelerating approach it therefore reads slightly high. Duration starts
 # at the 0.05 m/s onset rather than at the true start of motion, so it reads short.
 
@@ -327,8 +374,11 @@ fig = figures.plot_feature_space(feats)
 # - The book's data are synthetic. A seeded model of minimum-jerk submovements (a primary one, often
 #   with a corrective one) produces 10 x 150 approaches that end at a surface with non-zero speed,
 #   sampled at 60 Hz like the Phantom. It reproduces the paper's published aggregates: the selected
-#   count, large differences between participants, valid clusterings for k = 2..16, and an average
-#   silhouette near 0.337 at k = 6 with centres spread in PV.
+#   count, large differences between participants, valid clusterings for k = 2..16 and centres spread
+#   in PV at k = 6. Its average silhouette at k = 6 is higher than the paper's 0.337 on average over
+#   seeds; the committed seed meets the 0.30–0.38 target by the seed rule. The synthetic (PV, SPARC)
+#   cloud is longer in PV than the paper's value suggests, because SPARC of short 60 Hz segments varies
+#   little.
 # - Recordings live in one open CSV format. `read_recordings` rejects broken files with the file, line
 #   and column, and marks broken trials `invalid` with a reason instead of dropping them.
 # - Features come from positions differentiated up to contact. Onset is at 0.05 m/s and contact at the

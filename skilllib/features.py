@@ -2,9 +2,9 @@
 
 For every trial of :class:`skilllib.data.Recordings`:
 
-* **speed** (m/s): norm of the velocity obtained by differentiating the positions with central differences
-  (``numpy.gradient``: second-order inside, first-order one-sided at the ends) over the samples *before*
-  contact only. The Phantom's own velocity signal is noisy (field notes), so positions are differentiated.
+* **speed** (m/s): norm of the velocity obtained by differentiating the positions with second-order
+  finite differences (``numpy.gradient``, ``edge_order=2``: central inside, one-sided three-point at the
+  ends) over the samples *before* contact only. The Phantom's own velocity signal is noisy (field notes), so positions are differentiated.
   No low-pass filter: at the device's position resolution (about 0.03 mm) the speed noise is about
   ``0.03 mm * 60 Hz / sqrt(2)`` = 1.3 mm/s, a thousandth of a typical peak speed; SPARC only reads the
   spectrum above 5 % of its maximum and below its adaptive cut-off (Balasubramanian et al. 2015), so that
@@ -16,8 +16,8 @@ For every trial of :class:`skilllib.data.Recordings`:
 * **segment**: onset to the last sample before contact, ``N`` samples; ``duration = N / fs`` (s), which is
   the time from the onset sample to the first contact sample.
 * **features**: ``pv`` peak speed of the segment (m/s); ``contact_speed`` speed at the last sample before
-  contact (m/s; a backward difference, i.e. the mean speed over the last sampling interval before the
-  tip touched, between 0 and 1 interval before the touch); ``sparc`` (Balasubramanian et al. 2015) with
+  contact (m/s; the three-point backward difference there, an estimate of the speed at that sample, which
+  lies between 0 and 1 interval before the touch); ``sparc`` (Balasubramanian et al. 2015) with
   :data:`SPARC_PARAMS`; ``ldlj`` log dimensionless jerk (Balasubramanian et al. 2015).
 * **selection**: ``0.3 <= contact_speed <= 0.7`` m/s (the paper: 650 of 1500 trials).
 
@@ -40,8 +40,7 @@ ONSET_SPEED = 0.05  #: m/s, movement onset threshold (the paper)
 CONTACT_WINDOW = (0.3, 0.7)  #: m/s, selected contact speeds, inclusive (the paper)
 MIN_SEGMENT_SAMPLES = 5  #: fewer samples from onset to contact: too short to analyse
 #: SPARC settings of the SPARC chapter (Balasubramanian et al. 2015 defaults): fc in Hz, amp_th, padlevel
-SPARC_PARAMS: dict[str, float] = dict(getattr(smoothness, "SPARC_PARAMS", {"fc": 10.0, "amp_th": 0.05,
-                                                                          "padlevel": 4}))
+SPARC_PARAMS: dict[str, float] = dict(smoothness.SPARC_PARAMS)
 FEATURE_COLUMNS = ("participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
                    "ldlj", "n", "t_onset", "t_contact")
 
@@ -128,27 +127,6 @@ def segment(recordings: Recordings | pd.DataFrame, participant: Any, trial: int,
     return seg
 
 
-def _sparc_all(speeds: list[np.ndarray], fs: float, params: dict[str, float]) -> np.ndarray:
-    """SPARC of each profile; uses ``smoothness.sparc_many`` when the module provides it."""
-    many = getattr(smoothness, "sparc_many", None)
-    if many is not None:
-        return np.asarray(many(speeds, fs, **params), dtype=float)
-    return np.array([smoothness.sparc(s, fs, **params) for s in speeds], dtype=float)
-
-
-def _ldlj(speed: np.ndarray, fs: float) -> float:
-    """Log dimensionless jerk of a speed profile (Balasubramanian et al. 2015; field notes):
-    DLJ = -(N dt)^3 / max(v)^2 * sum((diff(v, 2) / dt^2)^2) dt, LDLJ = -ln|DLJ|."""
-    f = getattr(smoothness, "ldlj", None)
-    if f is not None:
-        return float(f(speed, fs))
-    dt = 1.0 / fs
-    v = np.asarray(speed, dtype=float)
-    jerk = np.diff(v, 2) / dt**2
-    dlj = -((len(v) * dt) ** 3) / v.max() ** 2 * np.sum(jerk**2) * dt
-    return float(-np.log(abs(dlj)))
-
-
 def _window_reason(v: float, window: tuple[float, float]) -> str:
     lo, hi = window
     if v < lo:
@@ -185,11 +163,11 @@ def trial_features(recordings: Recordings | pd.DataFrame, *, sparc_params: Mappi
             else:
                 v = seg.speed
                 row.update(status="", pv=float(v.max()), contact_speed=float(v[-1]), duration=seg.duration,
-                           ldlj=_ldlj(v, rec.fs), n=len(v), t_onset=float(d.t[seg.onset]),
+                           ldlj=float(smoothness.ldlj(v, rec.fs)), n=len(v), t_onset=float(d.t[seg.onset]),
                            t_contact=float(d.t[seg.contact]), _k=len(speeds))
                 speeds.append(v)
         rows.append(row)
-    sp = _sparc_all(speeds, rec.fs, params) if speeds else np.array([])
+    sp = np.asarray(smoothness.sparc_many(speeds, rec.fs, **params), dtype=float) if speeds else np.array([])
     for row in rows:
         if row["status"] == "":
             row["sparc"] = float(sp[row.pop("_k")])
@@ -234,7 +212,8 @@ def rest_speed(recordings: Recordings | pd.DataFrame, features: pd.DataFrame, ma
     """Speeds (m/s) at the interior samples (central differences, as inside a segment) more than
     ``margin`` s before onset in the valid trials: the noise floor at rest (white position noise of SD s
     gives s * fs / sqrt(2) per axis). The margin leaves out the slow start of the movement; the first
-    sample is left out because its one-sided difference amplifies noise about 2.5 times more."""
+    sample is left out because its one-sided three-point difference amplifies noise about 3.6 times more
+    than a central difference (coefficients 3/2, -2, 1/2 against 1/2, -1/2)."""
     rec = _as_recordings(recordings)
     out = []
     valid = features.loc[features["status"] != "invalid", ["participant", "trial", "t_onset"]]

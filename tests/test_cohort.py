@@ -5,6 +5,7 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -85,9 +86,51 @@ def test_every_generated_trial_is_segmentable_and_estimates_match_truth(full, co
     assert (lag >= -1e-4).all() and (lag < 1 / 60 + 1e-4).all()
 
 
-def test_calibration_targets_are_met(committed_features):
-    table = cohort.calibration_table(committed_features)
+@pytest.fixture(scope="module")
+def committed_sweep(committed_features):
+    from skilllib.prototypes import silhouette_sweep
+
+    return silhouette_sweep(committed_features[committed_features.status == "selected"], 2, 16, scaling="raw")
+
+
+def test_calibration_targets_are_met(committed_features, committed_sweep):
+    table = cohort.calibration_table(committed_features, committed_sweep)
     assert table["met"].all(), table[~table["met"]]
+
+
+def test_committed_seed_survey_matches_the_committed_cohort_and_the_seed_rule(committed_features, committed_sweep):
+    survey = pd.read_csv(cohort.SURVEY_CSV, index_col="seed")
+    assert list(survey.index) == list(range(20))
+    v = cohort.calibration_values(committed_features, committed_sweep)
+    row = survey.loc[cohort.SEED]
+    assert row.selected == v["n_selected"] and row.valid_k == len(v["valid_ks"])
+    assert row.silhouette_k6 == pytest.approx(v["silhouette_k6"], abs=5e-4)
+    assert row.centre_gap == pytest.approx(v["centre_gap"], abs=5e-4)
+    assert row.participant_ratio == pytest.approx(min(v["participant_ratio"].values()), abs=5e-3)
+    assert survey["all"].idxmax() == cohort.SEED and survey["all"].any()  # the first seed meeting every target
+    summary = cohort.survey_summary(survey)
+    assert summary["all targets"] == survey["all"].sum() <= summary.drop(["seeds", "all targets"]).min()
+
+
+def test_intended_contact_speeds_have_a_smooth_tail_not_a_clip_spike(full):
+    aim, m = full.truth.contact_aim.to_numpy(), cohort.CohortModel()
+    assert m.aim_soft_min[1] < aim.min() and aim.max() < m.aim_soft_max[1]
+    tails = aim[(aim < m.aim_soft_min[0]) | (aim > m.aim_soft_max[0])]
+    assert tails.size > 100 and np.unique(tails).size == tails.size  # np.clip piled them up at the limits
+
+
+@settings(max_examples=60, deadline=None)
+@given(v=st.floats(0.01, 100.0))
+def test_soft_max_is_identity_below_the_knee_and_bounded_and_monotone_above(v):
+    knee, ceiling = 1.0, 1.8
+    out = cohort._soft_max(v, knee, ceiling)
+    if v <= knee:
+        assert out == v
+    else:
+        assert knee < out < ceiling and out <= v
+        assert cohort._soft_max(v * 1.01, knee, ceiling) >= out
+    eps = 1e-6  # slope 1 at the knee: no kink where compression starts
+    assert (cohort._soft_max(knee + eps, knee, ceiling) - knee) / eps == pytest.approx(1.0, rel=1e-4)
 
 
 @settings(max_examples=8, deadline=None)

@@ -9,7 +9,6 @@ from matplotlib.collections import LineCollection
 from ..data import Recordings
 from ..features import CONTACT_WINDOW, ONSET_SPEED, velocity
 
-
 #: Colours of the participants (in sorted participant order): tab10 with its grey replaced by black,
 #: because grey marks excluded trials.
 PARTICIPANT_COLORS = tuple((0.0, 0.0, 0.0) if i == 7 else c for i, c in enumerate(plt.get_cmap("tab10").colors))
@@ -67,8 +66,9 @@ def plot_trials_by_participant(recordings: Recordings, features: pd.DataFrame,
 
 def plot_segmentation(recordings: Recordings, features: pd.DataFrame, keys: list[tuple]) -> plt.Figure:
     """Onset/contact segmentation of example trials: y (m) and approach speed (m/s) against time (s); the
-    onset threshold, the onset sample, the first contact sample and the segment (shaded)."""
-    fig, axs = plt.subplots(2, len(keys), figsize=(3.2 * len(keys), 4.6), sharex="col", squeeze=False)
+    onset threshold, the onset sample, the last sample before contact (the contact speed), the first
+    contact sample and the segment (shaded). One legend for all panels; the contact speed in the titles."""
+    fig, axs = plt.subplots(2, len(keys), figsize=(2.6 * len(keys), 5.0), sharex="col", squeeze=False)
     idx = features.set_index(["participant", "trial"])
     for j, (p, tr) in enumerate(keys):
         row = idx.loc[(p, tr)]
@@ -77,21 +77,23 @@ def plot_segmentation(recordings: Recordings, features: pd.DataFrame, keys: list
         ay.plot(t, y, ".-", ms=3, lw=0.8, color="0.3")
         av.plot(t[:c], v, ".-", ms=3, lw=0.8, color="0.3")
         av.axhline(ONSET_SPEED, color="tab:orange", lw=0.8, ls="--", label=f"onset threshold {ONSET_SPEED:g} m/s")
+        title = f"P{p} T{tr}: {row['status']}"
         if row["status"] != "invalid":
-            o = int(round((row["t_onset"] - t[0]) * recordings.fs))
+            o = round((row["t_onset"] - t[0]) * recordings.fs)
             for ax in (ay, av):
-                ax.axvspan(t[o], t[c - 1], color="tab:blue", alpha=0.12, lw=0)
+                ax.axvspan(t[o], t[c - 1], color="tab:blue", alpha=0.12, lw=0, label="segment" if ax is av else None)
             av.plot(t[o], v[o], "o", color="tab:orange", ms=5, label="onset")
-            av.plot(t[c - 1], v[c - 1], "s", color="tab:red", ms=5,
-                    label=f"contact speed {row['contact_speed']:.2f} m/s")
+            av.plot(t[c - 1], v[c - 1], "s", color="tab:red", ms=5, label="last sample before contact")
+            title += f"\ncontact speed {row['contact_speed']:.2f} m/s"
         for ax in (ay, av):
-            ax.axvline(t[c], color="tab:red", lw=0.8, ls=":")
-        ay.set_title(f"P{p} T{tr}: {row['status']}", fontsize=9)
+            ax.axvline(t[c], color="tab:red", lw=0.8, ls=":", label="first contact sample" if ax is av else None)
+        ay.set_title(title, fontsize=9)
         av.set_xlabel("time (s)")
-        av.legend(fontsize=6.5, frameon=False, loc="upper left")
     axs[0, 0].set_ylabel("y (m)")
     axs[1, 0].set_ylabel("speed (m/s)")
-    fig.tight_layout()
+    handles, labels = axs[1, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 5), frameon=False, fontsize=8.5)
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
     return fig
 
 
