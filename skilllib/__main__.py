@@ -1,13 +1,15 @@
 """``python -m skilllib run``: the book's pipeline on the synthetic cohort or on your recordings.
 
 Exit status: 0 on success; 2 for a file that cannot be read or a bad option (one line on stderr,
-no traceback); 3 when the run finished but too few trials were selected to find prototypes.
+no traceback); 3 when the run finished but too few trials were selected to find prototypes (results.json
+is written, with every trial); 1 for an unexpected error (one line; ``--debug`` shows the traceback);
+130 when interrupted.
 """
 from __future__ import annotations
 
 import argparse
 import sys
-from typing import Sequence
+from collections.abc import Sequence
 
 from .data import DataFormatError
 from .prototypes import DEFAULT_K
@@ -41,24 +43,26 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     from tqdm.auto import tqdm
 
-    from .pipeline import run, summary_lines
+    from .pipeline import OptionError, run, summary_lines
+
+    units = {"features": " trial", "silhouette": " k", "transfer": " prototype"}
 
     def progress(items, desc):
-        return tqdm(items, desc=desc, unit=" trial" if desc == "features" else " prototype",
-                    disable=args.quiet, leave=False, file=sys.stderr)
+        return tqdm(items, desc=desc, unit=units.get(desc, " item"), disable=args.quiet, leave=False,
+                    file=sys.stderr)
 
     qd_max = None if args.qd_max is None else (args.qd_max[0] if len(args.qd_max) == 1 else args.qd_max)
     try:
         result = run(args.data, args.out, k=args.k, robot=args.robot, qd_max=qd_max, scaling=args.scaling,
                      random_state=args.seed, progress=progress, write_figures=not args.no_figures)
-    except DataFormatError as e:
-        print(f"error: {e}", file=sys.stderr)
-        return 2
-    except (ValueError, OSError) as e:
+    except (DataFormatError, OptionError, OSError) as e:  # the user's file, options or output folder
         if args.debug:
             raise
         print(f"error: {e}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print("error: interrupted", file=sys.stderr)
+        return 130
     except Exception as e:  # an unexpected failure: one line, the traceback only on request
         if args.debug:
             raise
@@ -66,7 +70,8 @@ def main(argv: Sequence[str] | None = None) -> int:
               file=sys.stderr)
         return 1
     print("\n".join(summary_lines(result)))
-    print(f"wrote {args.out}/results.json" + ("" if args.no_figures else " and the figures"))
+    n_fig = len(result.results.get("figures", []))
+    print(f"wrote {args.out}/results.json" + ("" if args.no_figures else f" and {n_fig} figure files (PNG, SVG)"))
     return 0 if result.prototypes is not None else 3
 
 

@@ -292,9 +292,9 @@ def _check_units(source, keys, groups, pos_all, reasons, dt) -> None:
                         for i in idx]) / dt
     if np.median(span) > MAX_RANGE_M or np.median(speed95) > MAX_TYPICAL_SPEED:
         raise DataFormatError(
-            f"{source}: positions look like millimetres, not metres (a typical trial spans {np.median(span):g} "
-            f"and moves at up to {np.median(speed95):g} per s; a hand-held device spans well under "
-            f"{MAX_RANGE_M:g} m): write x, y, z in metres, e.g. divide millimetres by 1000")
+            f"{source}: positions look like millimetres or centimetres, not metres (a typical trial spans "
+            f"{np.median(span):.3g} and moves at up to {np.median(speed95):.3g} per s; a hand-held device spans "
+            f"well under {MAX_RANGE_M:g} m): write x, y, z in metres (divide millimetres by 1000, centimetres by 100)")
     for j, i in enumerate(idx):
         if span[j] > MAX_RANGE_M:
             reasons[i] = f"positions span {span[j]:.3g} m (more than {MAX_RANGE_M:g} m): a glitch or wrong units"

@@ -12,19 +12,19 @@ from __future__ import annotations
 import json
 import math
 import re
-import warnings
 from collections import Counter
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable, Sequence
+from typing import Any
 
 import numpy as np
 import pandas as pd
 
 from . import prototypes as pt
-from .data import Recordings, read_recordings
-from .features import CONTACT_WINDOW, segment, select, trial_features
-from .robots import get_robot
+from .data import MAX_RANGE_M, Recordings, read_recordings
+from .features import CONTACT_WINDOW, ONSET_SPEED, segment, select, trial_features
+from .robots import RobotSetup, get_robot, qd_limits_vector
 from .smoothness import SPARC_PARAMS
 from .transfer import TransferResult, transfer, transfer_summary
 
@@ -35,7 +35,14 @@ DEFAULT_DATA = REPO_ROOT / "data" / "cohort.csv"
 #: Fewest selected trials the clustering step accepts (K-means with k = 2 and a silhouette need 3).
 MIN_SELECTED = 3
 
+#: More trials than this fraction invalid with "no rest before onset": the summary suggests why.
+NO_REST_FRACTION = 0.2
+
 Progress = Callable[[Sequence[Any], str], Any]
+
+
+class OptionError(ValueError):
+    """An option of :func:`run` (``k``, ``robot``, ``qd_max``, ``scaling``) is wrong; checked before the data."""
 
 
 def _no_progress(items: Sequence[Any], desc: str) -> Sequence[Any]:
@@ -95,6 +102,48 @@ def choose_k(requested: int, sweep: pt.SilhouetteSweep) -> tuple[int, str | None
                      f"using k = {largest}, the largest the data allow")
 
 
+def sweep_with_progress(selected: pd.DataFrame, *, scaling: str = "raw", random_state: int = 0,
+                        progress: Progress = _no_progress) -> tuple[pt.SilhouetteSweep, str | None]:
+    """:func:`skilllib.prototypes.silhouette_sweep` over the paper's k = 2..16, one k at a time so that
+    a progress bar can follow it (``results[k]`` is ``fit_prototypes(selected, k)`` as there).
+
+    The range shrinks to k <= n - 1 and k <= the number of distinct (PV, SPARC) points (silhouettes need
+    it), with a message; ValueError when not even k = 2 is possible.
+    """
+    k_min, k_max = pt.K_RANGE
+    x = selected[list(pt.FEATURES)].to_numpy(dtype=float)
+    n, distinct = len(x), len(np.unique(x, axis=0))
+    hi = min(k_max, n - 1, distinct)
+    if hi < k_min:
+        raise ValueError(f"{n} selected trial(s) with {distinct} distinct (PV, SPARC) point(s): clustering needs "
+                         f"at least {k_min + 1} trials and {k_min} distinct points")
+    note = None if hi == k_max else (f"silhouette sweep shrunk from k = {k_min}..{k_max} to {k_min}..{hi}: "
+                                     f"{n} selected trials with {distinct} distinct (PV, SPARC) points allow "
+                                     f"at most k = {hi}")
+    fits = {k: pt.fit_prototypes(selected, k, scaling=scaling, random_state=random_state)
+            for k in progress(list(range(k_min, hi + 1)), "silhouette")}
+    return pt.SilhouetteSweep(results=fits, requested=(k_min, k_max)), note
+
+
+def check_options(k: int, robot: str, qd_max: Sequence[float] | float | None,
+                  scaling: str) -> tuple[RobotSetup, np.ndarray]:
+    """The robot setup and the joint velocity limits (rad/s) for the options; :class:`OptionError` for a
+    bad one. Called before the data are read, so a wrong option fails at once."""
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or k < 2:
+        raise OptionError(f"k must be an integer of at least 2, got {k!r}")
+    if scaling not in ("raw", "standard"):
+        raise OptionError(f"scaling must be 'raw' or 'standard', got {scaling!r}")
+    try:
+        setup = get_robot(robot)
+    except ValueError as e:
+        raise OptionError(str(e)) from None
+    try:
+        limits = qd_limits_vector(setup.qd_limits if qd_max is None else qd_max, setup.robot.n)
+    except ValueError as e:
+        raise OptionError(f"qd_max for {setup.robot.name} ({setup.robot.n} joints): {e}") from None
+    return setup, limits
+
+
 def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int = pt.DEFAULT_K,
         robot: str = "simple6", qd_max: Sequence[float] | float | None = None, scaling: str = "raw",
         random_state: int = 0, progress: Progress = _no_progress, write_figures: bool = True) -> PipelineRun:
@@ -104,41 +153,64 @@ def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int
     ``robot``: a name of :func:`skilllib.robots.get_robot`; ``qd_max``: joint velocity limits in
     rad/s (one for all joints or one per joint; default: the robot's); ``scaling``: "raw" (the paper)
     or "standard"; ``progress(items, description)`` wraps the long loops (e.g. tqdm).
-    Raises :class:`skilllib.data.DataFormatError` for a file that cannot be read and ``ValueError``
-    for bad options. With fewer than :data:`MIN_SELECTED` selected trials the clustering and transfer
-    are skipped, said in ``messages`` and ``results["messages"]``.
+    Raises :class:`OptionError` for a bad option (before reading the data) and
+    :class:`skilllib.data.DataFormatError` for a file that cannot be read. Bad trials never raise: they are
+    in ``results["trials"]`` as ``invalid`` with their reason. With fewer than :data:`MIN_SELECTED` selected
+    trials (or fewer than 2 distinct ones) the clustering and transfer are skipped, said in ``messages``.
+    results.json is written before the figures, so a figure that fails cannot lose the trials.
     """
     path = Path(data) if data is not None else DEFAULT_DATA
-    setup = get_robot(robot)  # validates the name before the long steps
-    limits = setup.qd_limits if qd_max is None else qd_max
-    if k < 2:
-        raise ValueError(f"k must be at least 2, got {k}")
+    setup, limits = check_options(k, robot, qd_max, scaling)
 
+    if out is not None:
+        out = Path(out)
+        if out.exists() and not out.is_dir():
+            raise OptionError(f"{out}: exists and is not a folder (--out names the folder for the results)")
     recordings = read_recordings(path)
+    if out is not None:
+        out.mkdir(parents=True, exist_ok=True)
     features = trial_features(recordings, sparc_params=dict(SPARC_PARAMS), progress=progress)
     selected = select(features)
     results: dict[str, Any] = {
         "dataset": {"path": _display_path(path, data), "n_trials": len(features),
-                    "n_participants": int(features["participant"].nunique()), "fs": float(recordings.fs)},
+                    "n_participants": int(features["participant"].nunique()),
+                    "fs": _plain(float(recordings.fs))},
         "sparc_params": {key: float(v) for key, v in SPARC_PARAMS.items()},
         "contact_speed_window": list(CONTACT_WINDOW),
         "trials": trials_section(features),
         "n_selected": len(selected),
     }
     result = PipelineRun(results=results, recordings=recordings, features=features)
+    if not np.isfinite(recordings.fs):
+        result.messages.append("the sampling rate is unknown: no trial is usable to derive it from the time stamps")
+    no_rest = int(features["reason"].astype(str).str.startswith("no rest before onset").sum())
+    if no_rest > NO_REST_FRACTION * len(features):
+        result.messages.append(
+            f"{no_rest} of {len(features)} trials are invalid with 'no rest before onset': either the recordings "
+            f"start after the movement began, or position noise, differentiated at {recordings.fs:.4g} Hz, exceeds "
+            f"the {ONSET_SPEED:g} m/s onset speed; then low-pass filter or downsample the positions (chapter 5)")
 
+    sweep = None
     if len(selected) < MIN_SELECTED:
         result.messages.append(f"only {len(selected)} selected trial(s): clustering needs at least "
                                f"{MIN_SELECTED}; no prototypes and no transfer")
     else:
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            sweep = pt.silhouette_sweep(selected, scaling=scaling, random_state=random_state)
-        result.messages += [str(w.message) for w in caught if issubclass(w.category, UserWarning)]
+        try:
+            sweep, note = sweep_with_progress(selected, scaling=scaling, random_state=random_state,
+                                              progress=progress)
+        except ValueError as e:
+            result.messages.append(f"{e}; no prototypes and no transfer")
+        else:
+            result.messages += [note] if note else []
+    if sweep is not None:
         k_used, note = choose_k(k, sweep)
-        if note:
-            result.messages.append(note)
+        result.messages += [note] if note else []
         fit = sweep.results[k_used]
+        if not fit.valid:
+            valid = sweep.valid_ks()
+            result.messages.append(
+                f"k = {k_used} is not silhouette-valid for these data (a cluster lies wholly below the average "
+                f"silhouette); valid k: {', '.join(map(str, valid)) or 'none'} (see silhouette_sweep.png, --k)")
         result.sweep, result.prototypes = sweep, fit
         results["silhouette"] = sweep.to_dict()
         results["silhouette_valid_k"] = sweep.valid_ks()
@@ -154,12 +226,15 @@ def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int
         results["transfer"] = transfer_summary(result.transfers)
     results["messages"] = result.messages
     if out is not None:
-        out = Path(out)
-        out.mkdir(parents=True, exist_ok=True)
+        _write_json(results, out)
         if write_figures:
             results["figures"] = _write_figures(result, out, setup.robot)
-        (out / "results.json").write_text(json.dumps(results, indent=1, allow_nan=False) + "\n")
+            _write_json(results, out)
     return result
+
+
+def _write_json(results: dict[str, Any], out: Path) -> None:
+    (out / "results.json").write_text(json.dumps(results, indent=1, allow_nan=False) + "\n")
 
 
 def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
@@ -172,13 +247,17 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
         written.extend(p.name for p in fg.save(fig, out, name))
         fg.plt.close(fig)
 
-    keep(fg.plot_feature_overview(run_.features), "features")
+    if (run_.features["status"] != "invalid").any():  # the data figures need at least one valid trial
+        keep(fg.plot_feature_overview(run_.features), "features")
+        keep(fg.plot_trials_by_participant(run_.recordings, run_.features), "trials_by_participant")
+        keep(fg.plot_participant_features(run_.features), "participant_features")
     if run_.prototypes is not None:
         keep(fg.plot_silhouette_sweep(run_.sweep, chosen_k=run_.prototypes.k), "silhouette_sweep")
         keep(fg.plot_silhouettes(run_.prototypes), "silhouettes_k")
         keep(fg.plot_clusters(run_.prototypes), "clusters_pv_sparc")
         keep(fg.plot_prototype_profiles(run_.profiles, run_.prototypes.prototypes), "prototype_speed_profiles")
         keep(fg.plot_joint_velocities(run_.transfers), "joint_velocities")
+        keep(fg.plot_frame_mapping(robot, run_.transfers[-1]), "frame_mapping")  # the fastest prototype
     return written
 
 
@@ -186,12 +265,13 @@ def summary_lines(run_: PipelineRun) -> list[str]:
     """A short human summary of a run: counts, commonest reasons, k, prototypes, feasibility."""
     f = run_.features
     counts = f["status"].value_counts()
-    lines = [f"trials read: {len(f)} from {run_.results['dataset']['n_participants']} participant(s) "
-             f"at {run_.recordings.fs:.4g} Hz",
-             f"selected: {counts.get('selected', 0)}, excluded: {counts.get('excluded', 0)}, "
-             f"invalid: {counts.get('invalid', 0)}"]
+    fs = run_.recordings.fs
+    rate = f"at {fs:.4g} Hz (from the time stamps)" if np.isfinite(fs) else "at an unknown sampling rate"
+    lines = [f"trials read: {len(f)} from {run_.results['dataset']['n_participants']} participant(s) {rate}",
+             (f"selected: {counts.get('selected', 0)}, excluded: {counts.get('excluded', 0)}, "
+              f"invalid: {counts.get('invalid', 0)}")]
     for status in ("invalid", "excluded"):
-        reasons = Counter(_reason_kind(r) for r in f.loc[f["status"] == status, "reason"])
+        reasons = Counter(reason_kind(r) for r in f.loc[f["status"] == status, "reason"])
         if reasons:
             top = "; ".join(f"{n} x {r}" for r, n in reasons.most_common(3))
             lines.append(f"  commonest {status} reasons: {top}")
@@ -202,13 +282,37 @@ def summary_lines(run_: PipelineRun) -> list[str]:
             p = {col: fit.prototypes.at[c, col] for col in fit.prototypes.columns}
             verdict = "feasible" if tr.feasible else (
                 f"needs time scaling x{tr.time_scale:.2f}" if not tr.flags else f"{len(tr.flags)} flag(s)")
+            peak = f"{np.nanmax(tr.peak_abs_qd):.2f}" if np.isfinite(tr.peak_abs_qd).any() else "n/a"
             lines.append(f"  cluster {c}: size {fit.sizes[c]}, prototype participant {p['participant']} trial "
                          f"{p['trial']} (PV {p['pv']:.2f} m/s, SPARC {p['sparc']:.2f}); "
-                         f"peak |qd| {np.nanmax(tr.peak_abs_qd):.2f} rad/s, {verdict}")
+                         f"peak |qd| {peak} rad/s, {verdict}")
+        n_ok = sum(tr.feasible for tr in run_.transfers)
+        lim = run_.transfers[0].qd_limits
+        lim_txt = f"{lim[0]:.3g} rad/s" if np.all(lim == lim[0]) else f"{', '.join(f'{v:.3g}' for v in lim)} rad/s"
+        lines.append(f"feasibility on {run_.transfers[0].robot} (joint velocity limits {lim_txt}): "
+                     f"{n_ok} of {fit.k} prototypes feasible as recorded")
     lines += [f"note: {m}" for m in run_.messages]
     return lines
 
 
-def _reason_kind(reason: str) -> str:
-    """A reason without its numbers, so that like reasons are counted together."""
-    return re.sub(r"[-+]?\d+(\.\d+)?(e[-+]?\d+)?", "N", str(reason).split(":")[0]).strip()
+#: Reasons whose numbers differ from trial to trial, and the kind they are counted as in the summary.
+_REASON_KINDS = (
+    (r"contact speed \S+ m/s (below|above) (\S+ m/s)", r"contact speed \1 \2"),
+    (r"sampled at ", "sampled at another rate than the file"),
+    (r"positions span ", f"positions span more than {MAX_RANGE_M:g} m"),
+    (r"in contact from sample ", "in contact from the start: no approach recorded"),
+)
+
+
+def reason_kind(reason: str) -> str:
+    """A trial's reason without its trial-specific parts (line numbers, values), so that like reasons are
+    counted together: ``"time goes backwards at line 12 (t = ...)"`` -> ``"time goes backwards"``."""
+    s = str(reason)
+    for pattern, kind in _REASON_KINDS:
+        m = re.match(pattern, s)
+        if m:
+            return m.expand(kind)
+    s = s.split(":")[0]
+    s = re.sub(r"\s*\([^)]*\d[^)]*\)", "", s)  # parentheses with numbers: "(3; need at least 5)"
+    s = re.sub(r"\s+at (line|row) \d+.*$", "", s)
+    return re.sub(r"[-+]?\d+(\.\d+)?(e[-+]?\d+)?", "N", s).strip()

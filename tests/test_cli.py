@@ -8,17 +8,25 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
 
+from skilllib import prototypes as pt
 from skilllib.__main__ import main
 from skilllib.cohort import CohortModel, generate_cohort
 from skilllib.data import write_recordings
+from skilllib.features import select, trial_features
+from skilllib.pipeline import sweep_with_progress
 
 ROOT = Path(__file__).resolve().parents[1]
+README_KEYS = {"dataset", "sparc_params", "contact_speed_window", "trials", "n_selected", "silhouette",
+               "silhouette_valid_k", "k", "scaling", "clusters", "transfer", "messages", "figures"}
+FIGURES = ("features", "trials_by_participant", "participant_features", "silhouette_sweep", "silhouettes_k",
+           "clusters_pv_sparc", "prototype_speed_profiles", "joint_velocities", "frame_mapping")
 TRIAL_KEYS = {"participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc", "ldlj"}
 
 
@@ -70,22 +78,100 @@ def test_small_file_at_100_hz(tmp_path, capsys, small_frame):
     assert "trials read: 48" in out and "selected:" in out
 
 
-def test_too_few_trials_for_k_adapts_with_a_message(tmp_path, capsys, small_frame):
-    few = small_frame[small_frame["participant"] == small_frame["participant"].iloc[0]]
-    data = _write(few, tmp_path / "few.csv")
-    code, out, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"), "--k", "40",
-                          "--no-figures")
+def _selected_keys(df: pd.DataFrame) -> list[tuple]:
+    f = trial_features(df)
+    return list(f.loc[f["status"] == "selected", ["participant", "trial"]].itertuples(index=False, name=None))
+
+
+def _only(df: pd.DataFrame, keys: list[tuple]) -> pd.DataFrame:
+    idx = pd.MultiIndex.from_frame(df[["participant", "trial"]])
+    return df[idx.isin(keys)]
+
+
+def test_small_data_shrink_the_sweep_and_k_with_messages(tmp_path, capsys, small_frame):
+    keys = _selected_keys(small_frame)[:5]  # 5 selected trials: silhouettes allow k = 2..4
+    data = _write(_only(small_frame, keys), tmp_path / "five.csv")
+    code, out, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"), "--no-figures")
+    assert code == 0, err
     res = _results(tmp_path / "o")
-    n_sel = res["n_selected"]
-    if n_sel >= 3:
-        assert code == 0
-        assert res["k"] < 40 and res["k"] <= n_sel - 1
-        assert any("k = 40" in m for m in res["messages"])
-        assert max(int(k) for k in res["silhouette"]) <= n_sel - 1
-    else:
-        assert code == 3
-        assert "clusters" not in res
-    assert len(res["trials"]) == 12
+    assert res["n_selected"] == 5
+    assert sorted(int(k) for k in res["silhouette"]) == [2, 3, 4]
+    assert res["k"] == 4 and len(res["clusters"]) == 4 and len(res["transfer"]["prototypes"]) == 4
+    assert any("shrunk" in m and "2..4" in m for m in res["messages"])
+    assert any("k = 6" in m and "k = 4" in m for m in res["messages"])
+    assert "note: silhouette sweep shrunk" in out
+
+
+@pytest.mark.parametrize("n", [0, 1, 2])
+def test_fewer_than_three_selected_trials_exit_3_with_every_trial(tmp_path, capsys, small_frame, n):
+    f = trial_features(small_frame)
+    excluded = list(f.loc[f["status"] == "excluded", ["participant", "trial"]].itertuples(index=False, name=None))
+    keys = _selected_keys(small_frame)[:n] + excluded[:2]
+    data = _write(_only(small_frame, keys), tmp_path / "few.csv")
+    code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"))
+    assert code == 3, err
+    res = _results(tmp_path / "o")
+    assert res["n_selected"] == n and len(res["trials"]) == n + 2
+    assert not {"clusters", "silhouette", "transfer", "k"} & set(res)
+    assert any(f"only {n} selected" in m for m in res["messages"])
+    assert "features.png" in res["figures"] and "clusters_pv_sparc.png" not in res["figures"]
+
+
+def test_identical_trials_cannot_be_clustered_exit_3(tmp_path, capsys, small_frame):
+    one = _only(small_frame, _selected_keys(small_frame)[:1])
+    data = _write(pd.concat([one.assign(trial=i) for i in range(1, 5)]), tmp_path / "same.csv")
+    code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"), "--no-figures")
+    assert code == 3, err
+    res = _results(tmp_path / "o")
+    assert res["n_selected"] == 4 and "clusters" not in res
+    assert any("1 distinct" in m for m in res["messages"])
+
+
+def test_every_trial_invalid_still_writes_results(tmp_path, capsys, small_frame):
+    few = small_frame.groupby(["participant", "trial"], sort=False).head(3)  # 3 samples per trial
+    data = _write(few, tmp_path / "short.csv")
+    code, out, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"))
+    assert code == 3, err
+    res = _results(tmp_path / "o")
+    assert res["dataset"]["fs"] is None and len(res["trials"]) == 48
+    assert {t["status"] for t in res["trials"]} == {"invalid"} and res["figures"] == []
+    assert "48 x too few samples" in out
+
+
+def test_recordings_that_start_in_motion_get_a_hint(tmp_path, capsys, small_frame):
+    f = trial_features(small_frame).set_index(["participant", "trial"])["t_onset"]
+    onset = small_frame.set_index(["participant", "trial"]).index.map(f).to_numpy()
+    late = small_frame[small_frame["t"].to_numpy() > onset + 0.05]  # every recording starts after onset
+    data = _write(late, tmp_path / "late.csv")
+    code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"), "--no-figures")
+    assert code == 3, err
+    res = _results(tmp_path / "o")
+    assert all(t["reason"].startswith("no rest before onset") for t in res["trials"])
+    assert any("48 of 48 trials" in m and "downsample" in m for m in res["messages"])
+
+
+def test_jittered_time_stamps_give_the_nominal_rate(tmp_path, capsys, small_frame):
+    rng = np.random.default_rng(1)
+    jit = small_frame.assign(t=small_frame["t"] + rng.uniform(-1e-3, 1e-3, len(small_frame)))  # +-1 ms at 100 Hz
+    data = _write(jit, tmp_path / "jitter.csv")
+    code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"), "--no-figures")
+    assert code == 0, err
+    res = _results(tmp_path / "o")
+    assert res["dataset"]["fs"] == pytest.approx(100.0, rel=1e-3)
+    assert not any(t["status"] == "invalid" for t in res["trials"])
+
+
+def test_the_sweep_with_progress_is_the_chapters_sweep(small_frame):
+    selected = select(trial_features(small_frame))
+    seen = []
+    sweep, note = sweep_with_progress(selected, progress=lambda items, desc: seen.append(desc) or items)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # the shrunk range: here a note instead
+        ref = pt.silhouette_sweep(selected)
+    assert seen == ["silhouette"] and (note is None) == (not ref.shrunk)
+    np.testing.assert_array_equal(sweep.ks, ref.ks)
+    np.testing.assert_allclose(sweep.scores, ref.scores)
+    assert sweep.valid_ks() == ref.valid_ks()
 
 
 # --- file-level problems: exit 2, one line naming the problem ----------------------------------------
@@ -134,11 +220,52 @@ def test_millimetres_are_recognised(tmp_path, capsys, small_frame):
     _one_line_error(err, "mm.csv", "millimet", "1000")
 
 
+def test_centimetres_are_recognised(tmp_path, capsys, small_frame):
+    data = _write(small_frame.assign(**{c: small_frame[c] * 100 for c in ("x", "y", "z")}), tmp_path / "cm.csv")
+    code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"))
+    assert code == 2
+    _one_line_error(err, "cm.csv", "centimetres", "100")
+
+
+def test_header_only_file(tmp_path, capsys):
+    (tmp_path / "header.csv").write_text("participant,trial,t,x,y,z,contact\n")
+    code, _, err = _run(capsys, "--data", str(tmp_path / "header.csv"), "--out", str(tmp_path / "o"))
+    assert code == 2
+    _one_line_error(err, "header.csv", "no data rows")
+
+
+def test_milliseconds_are_recognised(tmp_path, capsys, small_frame):
+    data = _write(small_frame.assign(t=small_frame["t"] * 1000), tmp_path / "ms.csv")
+    code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"))
+    assert code == 2
+    _one_line_error(err, "ms.csv", "milliseconds", "1000")
+
+
+def test_participants_at_different_rates_stop_the_run(tmp_path, capsys, small_frame):
+    other = generate_cohort(8, CohortModel(n_participants=2, n_trials=12, fs=120.0)).frame
+    data = _write(pd.concat([small_frame, other.assign(participant=other["participant"] + 10)]),
+                  tmp_path / "mixed.csv")
+    code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"))
+    assert code == 2
+    _one_line_error(err, "mixed.csv", "mixed sampling rates", "100 Hz", "120 Hz")
+
+
+def test_semicolon_separated_file_gets_a_hint(tmp_path, capsys, small_frame):
+    small_frame.to_csv(tmp_path / "semi.csv", sep=";", index=False)
+    code, _, err = _run(capsys, "--data", str(tmp_path / "semi.csv"), "--out", str(tmp_path / "o"))
+    assert code == 2
+    _one_line_error(err, "semi.csv", "participant", "commas")
+
+
 def test_bad_options_are_one_line(tmp_path, capsys, small_frame):
     data = _write(small_frame, tmp_path / "rec.csv")
     code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"), "--qd-max", "1", "2")
     assert code == 2
-    _one_line_error(err, "qd_limits")
+    _one_line_error(err, "qd_limits", "6 joints")
+    for bad in (["--qd-max", "-1"], ["--k", "1"]):
+        code, _, err = _run(capsys, "--data", str(tmp_path / "missing.csv"), "--out", str(tmp_path / "o"), *bad)
+        assert code == 2  # options are checked before the file is read
+        _one_line_error(err, "qd_limits" if "--qd-max" in bad else "k must")
     with pytest.raises(SystemExit) as e:  # argparse names the valid robots
         main(["run", "--data", str(data), "--out", str(tmp_path / "o"), "--robot", "r2d2"])
     assert e.value.code == 2
@@ -164,6 +291,14 @@ def test_broken_trials_are_marked_and_the_rest_goes_on(tmp_path, capsys, small_f
     df = df.drop(few[3:])                                           # only 3 samples left
     i = _rows(df, p_rep, t_rep)
     df.loc[i[15], "t"] = df.loc[i[14], "t"]                         # a repeated time stamp
+    (p_inf, t_inf), (p_non, t_non), (p_irr, t_irr), (p_off, t_off) = keys[5:9]
+    df.loc[_rows(df, p_inf, t_inf)[25], "z"] = np.inf                # infinite position
+    i = _rows(df, p_non, t_non)                                     # no onset: at rest until contact
+    c = int(np.flatnonzero(df.loc[i, "contact"].to_numpy())[0])
+    df.loc[i[:c], ["x", "y", "z"]] = df.loc[i[0], ["x", "y", "z"]].to_numpy(dtype=float)
+    df = df.drop(_rows(df, p_irr, t_irr)[12])                       # a missing sample: irregular sampling
+    i = _rows(df, p_off, t_off)
+    df.loc[i, "t"] = df.loc[i[0], "t"] + 2 * (df.loc[i, "t"] - df.loc[i[0], "t"])  # this trial at 50 Hz
     # rows of one trial not contiguous: move the last trial's first row to the top of the file
     p_last, t_last = keys[-1]
     first = _rows(df, p_last, t_last)[0]
@@ -176,7 +311,9 @@ def test_broken_trials_are_marked_and_the_rest_goes_on(tmp_path, capsys, small_f
     assert len(res["trials"]) == len(keys), "every input trial appears in results.json"
     by_key = {(t["participant"], t["trial"]): t for t in res["trials"]}
     expected = {(p_back, t_back): "backwards", (p_nan, t_nan): "nan", (p_noc, t_noc): "contact",
-                (p_few, t_few): "samples", (p_rep, t_rep): "repeat", (p_last, t_last): "contiguous"}
+                (p_few, t_few): "samples", (p_rep, t_rep): "repeat", (p_last, t_last): "contiguous",
+                (p_inf, t_inf): "infinite", (p_non, t_non): "no onset", (p_irr, t_irr): "irregular",
+                (p_off, t_off): "50.0 hz"}
     for key, word in expected.items():
         t = by_key[(_plain(key[0]), int(key[1]))]
         assert t["status"] == "invalid", (key, t)
@@ -184,7 +321,7 @@ def test_broken_trials_are_marked_and_the_rest_goes_on(tmp_path, capsys, small_f
         assert t["sparc"] is None and t["pv"] is None
     others = [t for k, t in by_key.items() if k not in {(_plain(a), int(b)) for a, b in expected}]
     assert any(t["status"] == "selected" for t in others)
-    assert "commonest invalid reasons" in out
+    assert "commonest invalid reasons" in out and "invalid: 10" in out
 
 
 def _plain(v):
@@ -196,7 +333,7 @@ def _plain(v):
 def test_default_run_writes_results_and_figures(tmp_path):
     out = tmp_path / "cohort"
     proc = subprocess.run([sys.executable, "-m", "skilllib", "run", "--out", str(out), "--quiet"],
-                          capture_output=True, text=True, cwd=tmp_path, timeout=600)
+                          check=False, capture_output=True, text=True, cwd=tmp_path, timeout=600)
     assert proc.returncode == 0, proc.stderr
     res = _results(out)
     assert res["dataset"] == {"path": "data/cohort.csv", "n_trials": 1500, "n_participants": 10, "fs": 60.0}
@@ -220,6 +357,8 @@ def test_default_run_writes_results_and_figures(tmp_path):
         assert p["time_scale"] >= 1
         assert not (p["feasible"] and p["time_scale"] > 1)
         assert p["feasible"] or p["time_scale"] > 1 or p["flags"]
+    assert set(res) == README_KEYS  # the schema table of README.md
+    assert not any("shrunk" in m or "needs more" in m for m in res["messages"])  # the cohort allows k = 6
+    assert set(res["figures"]) == {f"{n}.{ext}" for n in FIGURES for ext in ("png", "svg")}
     for name in res["figures"]:
         assert (out / name).stat().st_size > 0
-    assert {Path(n).suffix for n in res["figures"]} == {".png", ".svg"}
