@@ -258,8 +258,11 @@ fig = figures.plot_participant_features(feats)
 # %% [markdown]
 # ## From samples to a segment
 #
-# **Speed.** Velocity is the derivative of the positions by second-order finite differences
-# (`numpy.gradient`: central inside, three-point one-sided at the ends). Its norm is the speed. Only the samples *before* contact are
+# **Speed.** Velocity is the derivative of the positions, taken by a Savitzky-Golay derivative (a
+# quadratic fitted over a window of fixed duration, 2/60 s). At the experiment's 60 Hz that window is
+# three samples and the derivative is the second-order finite difference (central inside, three-point
+# one-sided at the ends); at higher rates the window keeps its duration, so the speed noise does not grow
+# with the rate (chapter 5 shows why that matters). Its norm is the speed. Only the samples *before* contact are
 # used: the impact is a velocity discontinuity, and a difference across it would mix the approach with
 # the rest on the surface. No low-pass filter is applied. Position noise at the device's resolution gives
 # a speed noise of about $0.03\,\text{mm} \times 60\,\text{Hz} / \sqrt{2} \approx 1.3$ mm/s, far below the

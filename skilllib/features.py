@@ -2,21 +2,27 @@
 
 For every trial of :class:`skilllib.data.Recordings`:
 
-* **speed** (m/s): norm of the velocity obtained by differentiating the positions with second-order
-  finite differences (``numpy.gradient``, ``edge_order=2``: central inside, one-sided three-point at the
-  ends) over the samples *before* contact only. The Phantom's own velocity signal is noisy (field notes), so positions are differentiated.
-  No low-pass filter: at the device's position resolution (about 0.03 mm) the speed noise is about
-  ``0.03 mm * 60 Hz / sqrt(2)`` = 1.3 mm/s, a thousandth of a typical peak speed; SPARC only reads the
-  spectrum above 5 % of its maximum and below its adaptive cut-off (Balasubramanian et al. 2015), so that
-  noise does not reach it, while any filter would itself smooth the profile that SPARC measures.
+* **speed** (m/s): norm of the velocity obtained by differentiating the positions over the samples
+  *before* contact only, with a Savitzky-Golay derivative (quadratic fit, ``scipy.signal.savgol_filter``)
+  over a window of fixed duration, :data:`DIFF_SPAN_S` = 2/60 s. At the experiment's 60 Hz that window is
+  3 samples, and the estimate is exactly the second-order finite difference (central inside, one-sided
+  three-point at the ends, as ``numpy.gradient(edge_order=2)``). The Phantom's own velocity signal is
+  noisy (field notes), so positions are differentiated. No further low-pass filter: at the device's
+  position resolution (about 0.03 mm) the speed noise at 60 Hz is about ``0.03 mm * 60 Hz / sqrt(2)`` =
+  1.3 mm/s, a thousandth of a typical peak speed; SPARC only reads the spectrum above 5 % of its maximum
+  and below its adaptive cut-off (Balasubramanian et al. 2015), so that noise does not reach it, while a
+  stronger filter would itself smooth the profile that SPARC measures. The span is fixed in seconds, not
+  in samples, because a difference over one sample interval amplifies position noise in proportion to
+  ``fs``: at 1 kHz a three-point difference turns 0.03 mm of noise into about 20 mm/s and onset detection
+  at 0.05 m/s fails; over 2/60 s the speed noise stays near its 60 Hz level at any rate.
   The differentiation never uses a sample taken in contact: the impact is a velocity discontinuity and a
-  central difference across it would mix the approach with the rest on the surface.
+  derivative across it would mix the approach with the rest on the surface.
 * **contact**: the first sample flagged ``contact == 1``; the approach is every sample before it.
 * **onset**: the first approach sample whose speed exceeds 0.05 m/s (the paper).
 * **segment**: onset to the last sample before contact, ``N`` samples; ``duration = N / fs`` (s), which is
   the time from the onset sample to the first contact sample.
 * **features**: ``pv`` peak speed of the segment (m/s); ``contact_speed`` speed at the last sample before
-  contact (m/s; the three-point backward difference there, an estimate of the speed at that sample, which
+  contact (m/s; the backward (one-sided) derivative there, an estimate of the speed at that sample, which
   lies between 0 and 1 interval before the touch); ``sparc`` (Balasubramanian et al. 2015) with
   :data:`SPARC_PARAMS`; ``ldlj`` log dimensionless jerk (Balasubramanian et al. 2015).
 * **selection**: ``0.3 <= contact_speed <= 0.7`` m/s (the paper: 650 of 1500 trials).
@@ -32,6 +38,7 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
+from scipy.signal import savgol_filter
 
 from . import smoothness
 from .data import Recordings, recordings_from_frame
@@ -39,6 +46,7 @@ from .data import Recordings, recordings_from_frame
 ONSET_SPEED = 0.05  #: m/s, movement onset threshold (the paper)
 CONTACT_WINDOW = (0.3, 0.7)  #: m/s, selected contact speeds, inclusive (the paper)
 MIN_SEGMENT_SAMPLES = 5  #: fewer samples from onset to contact: too short to analyse
+DIFF_SPAN_S = 2 / 60  #: s, span of the differentiating window (3 samples at the experiment's 60 Hz)
 #: SPARC settings of the SPARC chapter (Balasubramanian et al. 2015 defaults): fc in Hz, amp_th, padlevel
 SPARC_PARAMS: dict[str, float] = dict(smoothness.SPARC_PARAMS)
 FEATURE_COLUMNS = ("participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
@@ -69,13 +77,26 @@ class Segment:
         return len(self.speed) / self.fs
 
 
-def velocity(pos: np.ndarray, fs: float) -> np.ndarray:
-    """Velocity (N, 3) in m/s of positions (N, 3) in m sampled at ``fs`` Hz: ``numpy.gradient``
-    (central differences inside, one-sided at both ends); needs N >= 2."""
+def diff_window(fs: float, span_s: float = DIFF_SPAN_S) -> int:
+    """Samples (odd, at least 3) of the differentiating window that spans ``span_s`` s at ``fs`` Hz."""
+    return max(3, 2 * int(round(span_s * fs / 2)) + 1)
+
+
+def velocity(pos: np.ndarray, fs: float, span_s: float = DIFF_SPAN_S) -> np.ndarray:
+    """Velocity (N, 3) in m/s of positions (N, 3) in m sampled at ``fs`` Hz.
+
+    Savitzky-Golay derivative of a quadratic fitted over :func:`diff_window` samples (``span_s`` s;
+    quadratic fits to the first/last window at the ends). At 60 Hz the window has 3 samples and this is
+    ``numpy.gradient(pos, 1/fs, edge_order=2)``. Shorter inputs use the largest odd window that fits;
+    2 samples give their difference quotient. Needs N >= 2.
+    """
     pos = np.asarray(pos, dtype=float)
     if len(pos) < 2:
         raise ValueError(f"need at least 2 samples to differentiate, got {len(pos)}")
-    return np.gradient(pos, 1.0 / fs, axis=0, edge_order=2)
+    if len(pos) == 2:
+        return np.repeat((pos[1:] - pos[:1]) * fs, 2, axis=0)
+    window = min(diff_window(fs, span_s), len(pos) - (1 - len(pos) % 2))
+    return savgol_filter(pos, window, polyorder=2, deriv=1, delta=1.0 / fs, axis=0, mode="interp")
 
 
 def segment_arrays(t: np.ndarray, pos: np.ndarray, contact: np.ndarray, fs: float, *,

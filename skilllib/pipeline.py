@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import math
 import re
+import warnings
 from collections import Counter
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -102,29 +103,6 @@ def choose_k(requested: int, sweep: pt.SilhouetteSweep) -> tuple[int, str | None
                      f"using k = {largest}, the largest the data allow")
 
 
-def sweep_with_progress(selected: pd.DataFrame, *, scaling: str = "raw", random_state: int = 0,
-                        progress: Progress = _no_progress) -> tuple[pt.SilhouetteSweep, str | None]:
-    """:func:`skilllib.prototypes.silhouette_sweep` over the paper's k = 2..16, one k at a time so that
-    a progress bar can follow it (``results[k]`` is ``fit_prototypes(selected, k)`` as there).
-
-    The range shrinks to k <= n - 1 and k <= the number of distinct (PV, SPARC) points (silhouettes need
-    it), with a message; ValueError when not even k = 2 is possible.
-    """
-    k_min, k_max = pt.K_RANGE
-    x = selected[list(pt.FEATURES)].to_numpy(dtype=float)
-    n, distinct = len(x), len(np.unique(x, axis=0))
-    hi = min(k_max, n - 1, distinct)
-    if hi < k_min:
-        raise ValueError(f"{n} selected trial(s) with {distinct} distinct (PV, SPARC) point(s): clustering needs "
-                         f"at least {k_min + 1} trials and {k_min} distinct points")
-    note = None if hi == k_max else (f"silhouette sweep shrunk from k = {k_min}..{k_max} to {k_min}..{hi}: "
-                                     f"{n} selected trials with {distinct} distinct (PV, SPARC) points allow "
-                                     f"at most k = {hi}")
-    fits = {k: pt.fit_prototypes(selected, k, scaling=scaling, random_state=random_state)
-            for k in progress(list(range(k_min, hi + 1)), "silhouette")}
-    return pt.SilhouetteSweep(results=fits, requested=(k_min, k_max)), note
-
-
 def check_options(k: int, robot: str, qd_max: Sequence[float] | float | None,
                   scaling: str) -> tuple[RobotSetup, np.ndarray]:
     """The robot setup and the joint velocity limits (rad/s) for the options; :class:`OptionError` for a
@@ -187,8 +165,8 @@ def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int
     if no_rest > NO_REST_FRACTION * len(features):
         result.messages.append(
             f"{no_rest} of {len(features)} trials are invalid with 'no rest before onset': either the recordings "
-            f"start after the movement began, or position noise, differentiated at {recordings.fs:.4g} Hz, exceeds "
-            f"the {ONSET_SPEED:g} m/s onset speed; then low-pass filter or downsample the positions (chapter 5)")
+            f"start after the movement began, or the position noise is so large that its derivative exceeds the "
+            f"{ONSET_SPEED:g} m/s onset speed; then low-pass filter the positions before export (chapter 5)")
 
     sweep = None
     if len(selected) < MIN_SELECTED:
@@ -196,12 +174,14 @@ def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int
                                f"{MIN_SELECTED}; no prototypes and no transfer")
     else:
         try:
-            sweep, note = sweep_with_progress(selected, scaling=scaling, random_state=random_state,
-                                              progress=progress)
+            with warnings.catch_warnings(record=True) as caught:  # a shrunk k range: a note of the run
+                warnings.simplefilter("always", UserWarning)
+                sweep = pt.silhouette_sweep(selected, scaling=scaling, random_state=random_state,
+                                            progress=progress)
         except ValueError as e:
             result.messages.append(f"{e}; no prototypes and no transfer")
         else:
-            result.messages += [note] if note else []
+            result.messages += [str(w.message) for w in caught if issubclass(w.category, UserWarning)]
     if sweep is not None:
         k_used, note = choose_k(k, sweep)
         result.messages += [note] if note else []

@@ -330,12 +330,14 @@ class SilhouetteSweep:
 
 def silhouette_sweep(data: pd.DataFrame, k_min: int = K_RANGE[0], k_max: int = K_RANGE[1], *,
                      method: Method = "kmeans", scaling: Scaling = "raw", random_state: int = 0,
-                     n_init: int = 10) -> SilhouetteSweep:
+                     n_init: int = 10,
+                     progress: Callable[[list[int], str], Iterable[int]] | None = None) -> SilhouetteSweep:
     """Fit k = k_min..k_max clusters and compute silhouettes (Rousseeuw 1987) as the paper does (2..16).
 
     The silhouette needs k <= n - 1, and k clusters need k distinct points: when the data allow fewer
     clusters than ``k_max`` the range is shrunk to min(n - 1, distinct points) with a ``UserWarning``;
     ValueError when not even ``k_min`` is possible (or ``k_min`` < 2, or ``k_max`` < ``k_min``).
+    ``progress(ks, "silhouette")`` may wrap the loop over k (e.g. a tqdm progress bar).
     """
     df = _validate(data)
     if k_min < 2 or k_max < k_min:
@@ -349,8 +351,9 @@ def silhouette_sweep(data: pd.DataFrame, k_min: int = K_RANGE[0], k_max: int = K
     if hi < k_max:
         warnings.warn(f"silhouette sweep shrunk from k = {k_min}..{k_max} to {k_min}..{hi}: {n} trials with "
                       f"{distinct} distinct (pv, sparc) points allow at most k = {hi}", UserWarning, stacklevel=2)
+    ks = list(range(k_min, hi + 1))
     results = {k: fit_prototypes(df, k, method=method, scaling=scaling, random_state=random_state,
-                                 n_init=n_init) for k in range(k_min, hi + 1)}
+                                 n_init=n_init) for k in (progress(ks, "silhouette") if progress else ks)}
     return SilhouetteSweep(results=results, requested=(int(k_min), int(k_max)))
 
 

@@ -11,7 +11,7 @@ from skilllib import smoothness
 from skilllib.data import recordings_from_frame
 from skilllib.features import (
     CONTACT_WINDOW, FEATURE_COLUMNS, ONSET_SPEED, SPARC_PARAMS, participant_summary, segment, segment_arrays,
-    select, status_counts, trial_features, velocity,
+    select, status_counts, trial_features, velocity, diff_window,
 )
 
 FS = 60.0
@@ -45,6 +45,53 @@ def test_velocity_is_exact_for_quadratic_motion():
     v = velocity(pos, FS)
     np.testing.assert_allclose(v[:, 0], 0.3, atol=1e-12)
     np.testing.assert_allclose(v[:, 1], -4.0 * t, atol=1e-12)  # second order, ends included
+
+
+@pytest.mark.parametrize("n", [3, 4, 7, 90])
+def test_velocity_at_60_hz_is_the_second_order_finite_difference(n):
+    pos = np.random.default_rng(n).normal(size=(n, 3)).cumsum(axis=0) * 1e-3
+    np.testing.assert_allclose(velocity(pos, FS), np.gradient(pos, 1 / FS, axis=0, edge_order=2),
+                               rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("fs", [30.0, 120.0, 500.0, 1000.0])
+def test_velocity_is_exact_for_quadratic_motion_at_any_rate(fs):
+    t = np.arange(int(0.4 * fs)) / fs
+    pos = np.column_stack([0.3 * t, -2.0 * t**2, 0 * t])
+    np.testing.assert_allclose(velocity(pos, fs)[:, 1], -4.0 * t, atol=1e-9)
+
+
+def test_differentiating_window_spans_the_same_time_at_every_rate():
+    assert diff_window(60.0) == 3
+    for fs in (120.0, 250.0, 1000.0):
+        w = diff_window(fs)
+        assert w % 2 == 1 and abs((w - 1) / fs - 2 / 60) <= 1 / fs
+
+
+def test_speed_noise_does_not_grow_with_the_sampling_rate():
+    """The same 0.03 mm position noise at rest gives about the same speed noise at 60 Hz and 1 kHz."""
+    noise = {}
+    for fs in (60.0, 1000.0):
+        pos = np.random.default_rng(0).normal(0, 0.03e-3, size=(int(2 * fs), 3))
+        noise[fs] = np.std(np.linalg.norm(velocity(pos, fs), axis=1))
+    assert noise[1000.0] < 1.5 * noise[60.0]
+    assert noise[1000.0] < ONSET_SPEED / 10
+
+
+def test_a_1_khz_recording_is_segmented_like_the_60_hz_one():
+    feats = {}
+    for fs in (60.0, 1000.0):
+        t, pos, contact = approach(fs=fs)
+        pos = pos + np.random.default_rng(1).normal(0, 0.03e-3, pos.shape)
+        seg = segment_arrays(t, pos, contact, fs)
+        assert not isinstance(seg, str), seg
+        feats[fs] = seg.speed.max()
+    assert feats[1000.0] == pytest.approx(feats[60.0], rel=0.02)
+
+
+def test_velocity_of_two_samples_is_their_difference_quotient():
+    v = velocity(np.array([[0.0, 0.0, 0.0], [0.01, 0.0, 0.0]]), 100.0)
+    np.testing.assert_allclose(v, [[1.0, 0, 0], [1.0, 0, 0]])
 
 
 def test_velocity_needs_two_samples():

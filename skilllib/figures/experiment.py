@@ -1,6 +1,8 @@
 """Figures of the experiment and its data: trajectories, segmentation, per-participant features."""
 from __future__ import annotations
 
+from typing import Any
+
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
@@ -12,6 +14,11 @@ from ..features import CONTACT_WINDOW, ONSET_SPEED, velocity
 #: Colours of the participants (in sorted participant order): tab10 with its grey replaced by black,
 #: because grey marks excluded trials.
 PARTICIPANT_COLORS = tuple((0.0, 0.0, 0.0) if i == 7 else c for i, c in enumerate(plt.get_cmap("tab10").colors))
+
+
+def _plabel(p: Any) -> str:
+    """Short label of participant ``p``: "P3" for a number, the id itself for a name ("P03", "anna")."""
+    return f"P{p}" if isinstance(p, (int, np.integer)) else str(p)
 
 
 def _pcolor(participants: list, p) -> tuple[float, float, float]:
@@ -77,7 +84,7 @@ def plot_segmentation(recordings: Recordings, features: pd.DataFrame, keys: list
         ay.plot(t, y, ".-", ms=3, lw=0.8, color="0.3")
         av.plot(t[:c], v, ".-", ms=3, lw=0.8, color="0.3")
         av.axhline(ONSET_SPEED, color="tab:orange", lw=0.8, ls="--", label=f"onset threshold {ONSET_SPEED:g} m/s")
-        title = f"P{p} T{tr}: {row['status']}"
+        title = f"{_plabel(p)} T{tr}: {row['status']}"
         if row["status"] != "invalid":
             o = round((row["t_onset"] - t[0]) * recordings.fs)
             for ax in (ay, av):
@@ -148,7 +155,7 @@ def plot_feature_space(features: pd.DataFrame, ax: plt.Axes | None = None) -> pl
     ax.scatter(ex["pv"], ex["sparc"], s=4, color="0.8", label="excluded")
     for p in parts:
         g = f[(f["participant"] == p) & (f["status"] == "selected")]
-        ax.scatter(g["pv"], g["sparc"], s=6, color=_pcolor(parts, p), label=f"P{p}")
+        ax.scatter(g["pv"], g["sparc"], s=6, color=_pcolor(parts, p), label=_plabel(p))
     ax.set_xlabel("peak speed PV (m/s)")
     ax.set_ylabel("SPARC")
     ax.legend(fontsize=6.5, frameon=False, ncol=2, loc="lower right", markerscale=2)
