@@ -113,7 +113,8 @@ print(f"a trial whose median interval differs by more than {skilllib.data.RATE_T
 #
 # **High sampling rates.** A finite difference over one sample interval turns position noise into speed
 # noise in proportion to the rate: at 1 kHz the device's 0.03 mm resolution alone would give about
-# 20 mm/s, close to the 0.05 m/s onset threshold, and a trial whose speed at its first sample exceeds the
+# $0.03\,\text{mm} \times 1000\,\text{Hz} / \sqrt{2} \approx 21$ mm/s of noise, with peaks near the
+# 0.05 m/s onset threshold, and a trial whose speed at its first sample exceeds the
 # threshold cannot be segmented (*no rest before onset*). skilllib therefore differentiates over a window
 # of fixed *duration* (chapter 2), which is three samples at 60 Hz and more at higher rates. The window
 # at each rate, the share of invalid trials and the median features of the same generator recorded at
