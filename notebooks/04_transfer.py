@@ -46,7 +46,7 @@ from skilllib import figures, robots
 from skilllib.pipeline import DEFAULT_DATA
 from skilllib.smoothness import SPARC_PARAMS, sparc, sparc_spectrum
 from skilllib.transfer import (COND_THRESHOLD, EXP_TO_BASE, IK_RESIDUAL_TOL_M, SINGULAR_COND, apply_time_scale,
-                               transfer)
+                               time_scaled_features, transfer)
 
 rec = skilllib.data.read_recordings(DEFAULT_DATA)
 feats = skilllib.features.trial_features(rec)
@@ -123,7 +123,7 @@ q0 = robots.default_pose()
 J = simple6.ets().jacob0(q0)
 print(f"det J = {np.linalg.det(J):.4f}, cond J = {np.linalg.cond(J):.3f}")
 pd.DataFrame(J, index=["vx", "vy", "vz", "wx", "wy", "wz"],
-             columns=[f"q{j + 1}" for j in range(6)]).round(3)
+             columns=[f"q{j + 1}" for j in range(6)]).round(3) + 0.0  # + 0.0: no -0.0
 
 # %% [markdown]
 # ## The four steps
@@ -396,9 +396,9 @@ stretch = np.round(np.linspace(1.0, 2.0, 41), 3)
 fig, ax = plt.subplots(figsize=(6, 3.8))
 sparc_fixed, sparc_scaled = {}, {}
 for c, s in enumerate(segs):
-    runs = [apply_time_scale(s.t, s.speed, k) for k in stretch]
-    sparc_fixed[c] = [sparc(v, FS / k, fc=fc) for k, (_, v) in zip(stretch, runs)]
-    sparc_scaled[c] = [sparc(v, FS / k, fc=fc / k) for k, (_, v) in zip(stretch, runs)]
+    runs = [time_scaled_features(s.speed, FS, k, fc=fc) for k in stretch]
+    sparc_fixed[c] = [r["sparc_fixed_fc"] for r in runs]
+    sparc_scaled[c] = [r["sparc_fc_scaled"] for r in runs]
     color = figures.CLUSTER_COLORS[c]
     ax.plot(stretch, sparc_fixed[c], color=color, lw=1.6, label=f"cluster {c}")
     ax.plot(stretch, sparc_scaled[c], color=color, lw=1.2, ls="--")
@@ -427,14 +427,13 @@ print((sparc_fixed - sparc_fixed.iloc[0]).loc[[1.25, 1.5, 2.0]].round(3).to_stri
 rows = []
 for c, (s, r) in enumerate(zip(segs, strict)):
     k = r.time_scale
-    t_s, v_s = apply_time_scale(s.t, s.speed, k)  # the stretched samples, k / FS apart
-    t_60 = np.arange(t_s[0], t_s[-1] + 1e-9, 1 / FS)
-    v_60 = np.interp(t_60, t_s, v_s)  # the same movement sampled at the experiment's rate
-    rows.append({"s": k, "samples": len(v_s), f"samples at {FS:.0f} Hz": len(v_60),
-                 "PV/s (m/s)": s.speed.max() / k, f"PV at {FS:.0f} Hz (m/s)": v_60.max(),
+    m = time_scaled_features(s.speed, FS, k, fc=fc)
+    rows.append({"s": k, "samples": len(s.speed), f"samples at {FS:.0f} Hz": m["n_resampled"],
+                 "PV/s (m/s)": m["pv"], f"PV at {FS:.0f} Hz (m/s)": m["pv_resampled"],
                  "SPARC": sparc(s.speed, FS),
-                 "stretched, fc/s": sparc(v_s, FS / k, fc=fc / k), "stretched, fixed fc": sparc(v_s, FS / k),
-                 f"{FS:.0f} Hz, fc/s": sparc(v_60, FS, fc=fc / k), f"{FS:.0f} Hz, fixed fc": sparc(v_60, FS)})
+                 "stretched, fc/s": m["sparc_fc_scaled"], "stretched, fixed fc": m["sparc_fixed_fc"],
+                 f"{FS:.0f} Hz, fc/s": m["sparc_resampled_fc_scaled"],
+                 f"{FS:.0f} Hz, fixed fc": m["sparc_resampled_fixed_fc"]})
 measured = pd.DataFrame(rows, index=peaks.index)
 dev = measured.filter(like="Hz, ").add(-measured["SPARC"], axis=0).abs().max()
 print(f"largest |SPARC change|: stretched with fc/s {(measured['stretched, fc/s'] - measured['SPARC']).abs().max():.1e}; "
@@ -468,8 +467,8 @@ for c, (s, r) in enumerate(zip(segs, strict)):
     k = r.time_scale
     if k <= 1:
         continue
-    _, v = apply_time_scale(s.t, s.speed, k)
-    pv2, sp_scaled, sp_fixed = v.max(), sparc(v, FS / k, fc=fc / k), sparc(v, FS / k)
+    m = time_scaled_features(s.speed, FS, k, fc=fc)
+    pv2, sp_scaled, sp_fixed = m["pv"], m["sparc_fc_scaled"], m["sparc_fixed_fc"]
     ax.annotate("", xy=(pv2, sp_scaled), xytext=(protos.at[c, "pv"], protos.at[c, "sparc"]),
                 arrowprops=dict(arrowstyle="->", color=figures.CLUSTER_COLORS[c], lw=1.5))
     ax.scatter(pv2, sp_scaled, marker="D", s=40, color=figures.CLUSTER_COLORS[c], edgecolor="k", zorder=3)

@@ -42,6 +42,7 @@ import numpy as np
 import roboticstoolbox as rtb
 
 from .robots import get_robot, qd_limits_vector
+from .smoothness import sparc
 
 #: Experiment -> robot base rotation, ``p_base = EXP_TO_BASE @ p_exp`` (det +1):
 #: base x = exp z (anteroposterior, forward), base y = exp x (mediolateral), base z = exp y (up).
@@ -186,6 +187,25 @@ def apply_time_scale(t: np.ndarray, velocity: np.ndarray, s: float) -> tuple[np.
     if v.shape[0] != t.shape[0]:
         raise ValueError(f"velocity has {v.shape[0]} samples but t has {t.shape[0]}")
     return t[0] + s * (t - t[0]), v / s
+
+
+def time_scaled_features(speed: np.ndarray, fs: float, s: float, fc: float = 10.0) -> dict[str, float]:
+    """PV (m/s) and SPARC of a speed profile (m/s, sampled at ``fs`` Hz) slowed uniformly by ``s``.
+
+    Measured three ways (:func:`apply_time_scale`, then :func:`skilllib.smoothness.sparc`):
+    ``pv``, ``sparc_fc_scaled`` and ``sparc_fixed_fc`` on the stretched samples (``fs / s`` Hz) with the
+    cut-off ``fc / s`` or ``fc`` Hz; ``pv_resampled``, ``sparc_resampled_fc_scaled`` and
+    ``sparc_resampled_fixed_fc`` after linear resampling at ``fs`` (``n_resampled`` samples), as a
+    recording of the slowed movement at the experiment's rate would give.
+    """
+    v = np.asarray(speed, dtype=float)
+    t_s, v_s = apply_time_scale(np.arange(v.size) / fs, v, s)  # the stretched samples, s / fs apart
+    t_r = np.arange(t_s[0], t_s[-1] + 1e-9, 1 / fs)
+    v_r = np.interp(t_r, t_s, v_s)
+    return {"pv": float(v_s.max()), "sparc_fc_scaled": sparc(v_s, fs / s, fc=fc / s),
+            "sparc_fixed_fc": sparc(v_s, fs / s, fc=fc), "n_resampled": int(v_r.size),
+            "pv_resampled": float(v_r.max()), "sparc_resampled_fc_scaled": sparc(v_r, fs, fc=fc / s),
+            "sparc_resampled_fixed_fc": sparc(v_r, fs, fc=fc)}
 
 
 def minimum_jerk_descent(amplitude: float = 0.2, peak_speed: float = 1.0, fs: float = 60.0,

@@ -342,3 +342,15 @@ def test_result_is_a_dataclass_with_per_sample_arrays():
     assert r.q.shape == r.qd.shape == (N, 6)
     assert r.det_j.shape == r.cond_j.shape == r.ik_residual_m.shape == (N,)
     assert r.min_abs_det_j > 0 and r.max_cond_j >= 1
+
+
+def test_time_scaled_features_divide_pv_and_keep_sparc_with_the_scaled_cut_off():
+    from skilllib import minimum_jerk_speed
+    from skilllib.transfer import time_scaled_features
+
+    t = np.arange(0, 0.5, 1 / 60)
+    v = minimum_jerk_speed(t, T=0.6, D=0.2)  # cut before the end: non-zero speed at contact
+    m = time_scaled_features(v, 60.0, 1.7)
+    assert m["pv"] == pytest.approx(v.max() / 1.7, rel=1e-12)
+    assert m["sparc_fc_scaled"] == pytest.approx(sparc(v, 60.0), abs=1e-12)
+    assert m["n_resampled"] > v.size and m["pv_resampled"] <= m["pv"] + 1e-12
