@@ -42,7 +42,7 @@ import pandas as pd
 from sklearn.cluster import KMeans
 from sklearn.metrics import silhouette_score
 
-from skilllib import cohort, data, features, figures
+from skilllib import calibration, cohort, data, features, figures
 from skilllib.prototypes import silhouette_sweep
 
 pd.set_option("display.precision", 3)
@@ -177,7 +177,7 @@ feats = features.trial_features(rec)
 t_feat = time.perf_counter() - t0
 print(f"features of {len(feats)} trials in {t_feat:.2f} s")
 sweep = silhouette_sweep(features.select(feats), 2, 16, scaling="raw")
-cohort.calibration_table(feats, sweep)
+calibration.calibration_table(feats, sweep)
 
 # %%
 sweep.table().T
@@ -191,11 +191,11 @@ sweep.table().T
 # many seeds meet each target: the silhouette target is the one the model misses most often.
 
 # %%
-survey = pd.read_csv(cohort.SURVEY_CSV, index_col="seed")
+survey = pd.read_csv(calibration.SURVEY_CSV, index_col="seed")
 print(f"silhouette at k = 6 over {len(survey)} seeds: mean {survey.silhouette_k6.mean():.3f}, "
       f"SD {survey.silhouette_k6.std():.3f}, range {survey.silhouette_k6.min():.3f}-{survey.silhouette_k6.max():.3f}; "
       f"paper 0.337; committed cohort (seed {cohort.SEED}) {sweep.results[6].silhouette:.3f}")
-cohort.survey_summary(survey).to_frame("seeds meeting the target").T
+calibration.survey_summary(survey).to_frame("seeds meeting the target").T
 
 # %% [markdown]
 # So the model sits above the paper's 0.337 on average over seeds. The committed cohort meets the

@@ -14,6 +14,23 @@ from collections.abc import Sequence
 from .data import DataFormatError
 from .prototypes import DEFAULT_K
 from .robots import ROBOT_NAMES
+from .smoothness import DEFAULT_AMP_TH, DEFAULT_FC, DEFAULT_PADLEVEL
+
+
+def _setting(text: str) -> dict[str, float]:
+    """``fc=10`` or ``fc=10,amp_th=0.1,padlevel=4`` (a bare number is fc) -> a dict of SPARC parameters."""
+    out: dict[str, float] = {}
+    for part in text.split(","):
+        key, sep, value = part.partition("=")
+        key, value = (key.strip(), value.strip()) if sep else ("fc", key.strip())
+        key = key.replace("-", "_")
+        if key not in ("fc", "amp_th", "padlevel"):
+            raise argparse.ArgumentTypeError(f"{text!r}: unknown SPARC parameter {key!r} (use fc, amp_th, padlevel)")
+        try:
+            out[key] = int(value) if key == "padlevel" else float(value)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r}: {key} = {value!r} is not a number") from None
+    return out
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -33,6 +50,16 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--scaling", choices=("raw", "standard"), default="raw",
                    help="features as they are (the paper) or standardised before K-means")
     r.add_argument("--seed", type=int, default=0, help="random_state of K-means (default 0)")
+    r.add_argument("--fc", type=float, default=DEFAULT_FC, metavar="HZ",
+                   help=f"SPARC's maximum cut-off frequency in Hz (default {DEFAULT_FC:g}, the paper's 0-20 Hz; "
+                        "at most the Nyquist frequency of the recordings)")
+    r.add_argument("--amp-th", type=float, default=DEFAULT_AMP_TH, metavar="FRACTION",
+                   help=f"SPARC's amplitude threshold (default {DEFAULT_AMP_TH:g})")
+    r.add_argument("--padlevel", type=int, default=DEFAULT_PADLEVEL, metavar="N",
+                   help=f"SPARC's zero padding, nfft = 2**(ceil(log2 N) + padlevel) (default {DEFAULT_PADLEVEL})")
+    r.add_argument("--sensitivity", type=_setting, nargs="+", metavar="SETTING",
+                   help="compare the run with other SPARC settings, each like fc=10 or fc=10,amp_th=0.1 "
+                        "(results.json sparc_sensitivity; chapter 3)")
     r.add_argument("--no-figures", action="store_true", help="write results.json only")
     r.add_argument("--quiet", action="store_true", help="no progress bars")
     r.add_argument("--debug", action="store_true", help="show the traceback of an unexpected error")
@@ -54,7 +81,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     qd_max = None if args.qd_max is None else (args.qd_max[0] if len(args.qd_max) == 1 else args.qd_max)
     try:
         result = run(args.data, args.out, k=args.k, robot=args.robot, qd_max=qd_max, scaling=args.scaling,
-                     random_state=args.seed, progress=progress, write_figures=not args.no_figures)
+                     random_state=args.seed, fc=args.fc, amp_th=args.amp_th, padlevel=args.padlevel,
+                     sensitivity=args.sensitivity, progress=progress, write_figures=not args.no_figures)
     except (DataFormatError, OptionError, OSError) as e:  # the user's file, options or output folder
         if args.debug:
             raise

@@ -39,7 +39,6 @@ and one per trial, so changing how one trial is drawn leaves every other trial u
 """
 from __future__ import annotations
 
-import io
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -47,11 +46,11 @@ import numpy as np
 import pandas as pd
 from scipy.special import ndtri
 
-from .data import COLUMNS, format_recordings, recordings_from_frame, write_recordings
+from .data import COLUMNS, write_recordings
 
 #: The seed of data/cohort.csv: the first seed 0, 1, 2, ... whose cohort meets every target of
-#: :func:`calibration_table` (the survey of seeds 0-19: :data:`SURVEY_CSV`, data/README.md).
-SEED = 1
+#: :func:`skilllib.calibration.calibration_table` (survey of seeds 0-19: ``data/seed_survey.csv``, data/README.md).
+SEED = 9
 
 
 @dataclass(frozen=True)
@@ -306,95 +305,48 @@ def write_cohort(path: str | Path, seed: int = SEED, model: CohortModel | None =
     return write_recordings(generate_cohort(seed, model).frame, path)
 
 
+#: Unit and meaning of every parameter of :class:`CohortModel` (for :func:`model_table`).
+PARAMETER_DOCS: dict[str, tuple[str, str]] = {
+    "n_participants": ("", "participants"),
+    "n_trials": ("", "trials per participant"),
+    "fs": ("Hz", "sampling rate of the positions (the paper: 60 Hz)"),
+    "travel": ("m", "range of a participant's start-to-surface distance"),
+    "start_box": ("m", "edge of the start box; trial start positions vary inside it"),
+    "surface_y": ("m", "range of the height of the contact surface in the device frame"),
+    "dur_median": ("s", "median of the participants' preferred primary-submovement durations"),
+    "dur_between": ("log-SD", "spread of the preferred duration across participants"),
+    "dur_within": ("log-SD", "range of the spread of duration across one participant's trials"),
+    "min_duration": ("s", "shortest primary submovement (an assumption: no faster aiming)"),
+    "aim_median": ("m/s", "median of the participants' typical contact speeds (the instruction)"),
+    "aim_between": ("log-SD", "bias of the typical contact speed across participants"),
+    "aim_within": ("log-SD", "range of the spread of the intended contact speed across trials"),
+    "aim_soft_min": ("m/s", "knee and floor of the smooth lower limit of intended contact speeds"),
+    "aim_soft_max": ("m/s", "knee and ceiling of the smooth upper limit of intended contact speeds"),
+    "rtpv": ("", "range of the relative time to peak speed at a 0.5 s duration (downward movement)"),
+    "rtpv_slope": ("1/s", "change of the relative time to peak speed per second of duration"),
+    "rtpv_within": ("", "SD of the relative time to peak speed across one participant's trials"),
+    "correction_rate": ("", "range of a participant's share of corrected trials"),
+    "correction_pv_ref": ("m/s", "primary peak speed at which trials are corrected at the participant's rate"),
+    "correction_speed_exp": ("", "exponent of the growth of the correction probability with peak speed"),
+    "second_correction": ("", "probability of a second correction after a first (0: off)"),
+    "primary_reach": ("", "mean and SD of the share of the distance a short primary covers"),
+    "correction_delay": ("", "mean and SD of a correction's onset, as a share of the previous duration"),
+    "correction_duration": ("s", "range of a corrective submovement's duration"),
+    "rest_before": ("s", "range of the rest in the start box before onset"),
+    "rest_after": ("s", "range of the rest on the surface after contact"),
+    "tilt_sd": ("deg", "SD of a participant's tilt of the movement from the vertical (x and z)"),
+    "bow_sd": ("m", "SD of the per-trial lateral bow at mid-movement"),
+    "sway": ("m", "amplitude of the slow postural sway (0.2-1 Hz)"),
+    "noise_sd": ("m", "SD of the white position noise on each axis (the device's resolution)"),
+    "wall_tau": ("s", "time constant of the critically damped virtual wall"),
+    "press_depth": ("m", "range of the static penetration while resting on the surface"),
+}
+
+
 def model_table(model: CohortModel | None = None) -> pd.DataFrame:
-    """The generator's parameters as a table (name, value) for the chapter."""
+    """The generator's parameters as a table (value, unit, meaning); ranges are (low, high) of a uniform
+    draw, pairs marked "mean and SD" are those of a normal one."""
     m = asdict(model or CohortModel())
-    return pd.Series({k: str(v) for k, v in m.items()}, name="value").rename_axis("parameter").to_frame()
-
-
-#: Calibration targets: the paper's published aggregates and the ranges the cohort must hit.
-TARGETS = {"selected": (600, 700), "silhouette_k6": (0.30, 0.38), "centre_gap": 0.08, "participant_ratio": 1.5}
-#: :func:`seed_survey` of seeds 0-19 with the default model, as committed (command in data/README.md).
-SURVEY_CSV = Path(__file__).resolve().parents[1] / "data" / "seed_survey.csv"
-
-
-def calibration_values(features: pd.DataFrame, sweep=None) -> dict:
-    """The numbers behind :func:`calibration_table`: ``n_selected``, ``n_trials``, ``valid_ks`` (list),
-    ``n_ks``, ``silhouette_k6``, ``centres_pv`` (k = 6, sorted, m/s), ``centre_gap`` (m/s) and
-    ``participant_ratio`` (max / min of participant medians of pv, contact_speed, duration)."""
-    from .prototypes import silhouette_sweep  # the book's clustering (the paper's method); no import cycle
-
-    sel = features[features["status"] == "selected"]
-    sw = sweep if sweep is not None else silhouette_sweep(sel, 2, 16, scaling="raw")
-    cen = np.sort(sw.results[6].centres["pv"].to_numpy())
-    med = features[features["status"] != "invalid"].groupby("participant")[["pv", "contact_speed", "duration"]].median()
-    return {"n_selected": len(sel), "n_trials": len(features), "valid_ks": sw.valid_ks(), "n_ks": len(sw.ks),
-            "silhouette_k6": float(sw.results[6].silhouette), "centres_pv": cen,
-            "centre_gap": float(np.diff(cen).min()), "participant_ratio": (med.max() / med.min()).to_dict()}
-
-
-def calibration_table(features: pd.DataFrame, sweep=None) -> pd.DataFrame:
-    """Target vs obtained for the paper's aggregate numbers, on a features table
-    (:func:`skilllib.features.trial_features`).
-
-    Silhouettes as the paper: K-means (scikit-learn, ``n_init=10``, ``random_state=0``) on the raw
-    (PV m/s, SPARC) tuples of the selected trials, k = 2..16, via :func:`skilllib.prototypes.silhouette_sweep`
-    (pass ``sweep`` to reuse one); "valid" as there (average > 0, every cluster reaches above the average).
-    "Well separated" centre PVs: adjacent centres (sorted by PV) at least ``TARGETS['centre_gap']`` m/s
-    apart. "Large variability across participants" (Fig. 1b): the largest participant median of PV,
-    contact speed and duration is at least ``TARGETS['participant_ratio']`` times the smallest.
-    """
-    v = calibration_values(features, sweep)
-    lo, hi = TARGETS["selected"]
-    slo, shi = TARGETS["silhouette_k6"]
-    n_sel, sil, gap = v["n_selected"], v["silhouette_k6"], v["centre_gap"]
-    rows = [
-        ("trials with 0.3 <= contact speed <= 0.7 m/s", "650 of 1500", f"{lo}-{hi}",
-         f"{n_sel} of {v['n_trials']}", lo <= n_sel <= hi),
-        ("valid clusterings, k = 2..16 (raw PV, SPARC)", "all (2..16)", "all 15",
-         f"{len(v['valid_ks'])} of {v['n_ks']}", len(v["valid_ks"]) == 15),
-        ("average silhouette, k = 6 (raw)", "0.337", f"{slo:.2f}-{shi:.2f}", f"{sil:.3f}", slo <= sil <= shi),
-        ("k = 6 centre PVs (m/s), smallest gap", "well separated over the range",
-         f"gap >= {TARGETS['centre_gap']:g} m/s", ", ".join(f"{c:.2f}" for c in v["centres_pv"]) + f"; gap {gap:.3f}",
-         gap >= TARGETS["centre_gap"]),
-    ]
-    for col, name in [("pv", "PV"), ("contact_speed", "contact speed"), ("duration", "duration")]:
-        r = v["participant_ratio"][col]
-        rows.append((f"participant medians of {name}: max / min", "large (Fig. 1b)",
-                     f">= {TARGETS['participant_ratio']:g}", f"{r:.2f}", r >= TARGETS["participant_ratio"]))
-    return pd.DataFrame(rows, columns=["quantity", "paper", "target", "obtained", "met"]).set_index("quantity")
-
-
-def seed_survey(seeds, model: CohortModel | None = None) -> pd.DataFrame:
-    """The calibration numbers of the cohort of each seed, one row per seed: selected trials, valid k
-    (of 15), silhouette at k = 6, smallest centre-PV gap (m/s), smallest participant max/min ratio, and
-    ``all`` (every target of :func:`calibration_table` met). Slow: a cohort, its features and a
-    silhouette sweep per seed (several seconds each). Each cohort goes through the CSV writer's rounding
-    (:func:`skilllib.data.format_recordings`), so the row of :data:`SEED` is what ``data/cohort.csv`` gives."""
-    from .features import trial_features
-    from .prototypes import silhouette_sweep
-
-    rows = {}
-    for s in seeds:
-        text = format_recordings(generate_cohort(int(s), model).frame)
-        f = trial_features(recordings_from_frame(pd.read_csv(io.StringIO(text))))
-        sw = silhouette_sweep(f[f["status"] == "selected"], 2, 16, scaling="raw")
-        v = calibration_values(f, sw)
-        rows[int(s)] = {"selected": v["n_selected"], "valid_k": len(v["valid_ks"]),
-                        "silhouette_k6": round(v["silhouette_k6"], 3), "centre_gap": round(v["centre_gap"], 3),
-                        "participant_ratio": round(min(v["participant_ratio"].values()), 2),
-                        "all": bool(calibration_table(f, sw)["met"].all())}
-    out = pd.DataFrame.from_dict(rows, orient="index")
-    out.index.name = "seed"
-    return out
-
-
-def survey_summary(survey: pd.DataFrame) -> pd.Series:
-    """How many seeds of a :func:`seed_survey` table meet each target of :func:`calibration_table`."""
-    (lo, hi), (slo, shi) = TARGETS["selected"], TARGETS["silhouette_k6"]
-    return pd.Series({"seeds": len(survey), "selected": int(survey["selected"].between(lo, hi).sum()),
-                      "all k valid": int((survey["valid_k"] == 15).sum()),
-                      "silhouette k = 6": int(survey["silhouette_k6"].between(slo, shi).sum()),
-                      "centre gap": int((survey["centre_gap"] >= TARGETS["centre_gap"]).sum()),
-                      "participant ratio": int((survey["participant_ratio"] >= TARGETS["participant_ratio"]).sum()),
-                      "all targets": int(survey["all"].sum())})
+    rows = {k: {"value": str(v), "unit": PARAMETER_DOCS[k][0], "meaning": PARAMETER_DOCS[k][1]}
+            for k, v in m.items()}
+    return pd.DataFrame.from_dict(rows, orient="index").rename_axis("parameter")

@@ -24,7 +24,9 @@ For every trial of :class:`skilllib.data.Recordings`:
 * **features**: ``pv`` peak speed of the segment (m/s); ``contact_speed`` speed at the last sample before
   contact (m/s; the backward (one-sided) derivative there, an estimate of the speed at that sample, which
   lies between 0 and 1 interval before the touch); ``sparc`` (Balasubramanian et al. 2015) with
-  :data:`SPARC_PARAMS`; ``ldlj`` log dimensionless jerk (Balasubramanian et al. 2015).
+  :data:`SPARC_PARAMS`, with ``sparc_band_end_hz`` (Hz, the last frequency of its band) and
+  ``sparc_capped`` (True when the maximum cut-off fc, not the amplitude threshold, ended the band; see
+  :func:`skilllib.smoothness.sparc_bands`); ``ldlj`` log dimensionless jerk (Balasubramanian et al. 2015).
 * **selection**: ``0.3 <= contact_speed <= 0.7`` m/s (the paper: 650 of 1500 trials).
 
 Every trial stays in the table: ``status`` is ``selected``, ``excluded`` (outside the window, with the
@@ -50,7 +52,7 @@ DIFF_SPAN_S = 2 / 60  #: s, span of the differentiating window (3 samples at the
 #: SPARC settings of the SPARC chapter (Balasubramanian et al. 2015 defaults): fc in Hz, amp_th, padlevel
 SPARC_PARAMS: dict[str, float] = dict(smoothness.SPARC_PARAMS)
 FEATURE_COLUMNS = ("participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
-                   "ldlj", "n", "t_onset", "t_contact")
+                   "sparc_band_end_hz", "sparc_capped", "ldlj", "n", "t_onset", "t_contact")
 
 
 @dataclass(frozen=True)
@@ -164,9 +166,10 @@ def trial_features(recordings: Recordings | pd.DataFrame, *, sparc_params: Mappi
     """One row per trial of ``recordings`` (all of them, in their order) with its features and status.
 
     Columns: ``participant, trial, status`` (``selected`` / ``excluded`` / ``invalid``), ``reason``
-    (empty when selected), ``pv`` (m/s), ``contact_speed`` (m/s), ``duration`` (s), ``sparc``, ``ldlj``,
-    ``n`` (segment samples), ``t_onset``, ``t_contact`` (s, time stamps of the onset sample and of the
-    first contact sample). Features are NaN only for invalid trials. ``sparc_params`` defaults to
+    (empty when selected), ``pv`` (m/s), ``contact_speed`` (m/s), ``duration`` (s), ``sparc``,
+    ``sparc_band_end_hz`` (Hz), ``sparc_capped`` (nullable boolean: fc ended the band), ``ldlj``, ``n``
+    (segment samples), ``t_onset``, ``t_contact`` (s, time stamps of the onset sample and of the
+    first contact sample). Features are NaN (NA) only for invalid trials. ``sparc_params`` defaults to
     :data:`SPARC_PARAMS`; ``window`` is the inclusive contact-speed window in m/s; ``progress(items,
     description)`` may wrap the loop over trials (e.g. tqdm).
     """
@@ -188,14 +191,17 @@ def trial_features(recordings: Recordings | pd.DataFrame, *, sparc_params: Mappi
                            t_contact=float(d.t[seg.contact]), _k=len(speeds))
                 speeds.append(v)
         rows.append(row)
-    sp = np.asarray(smoothness.sparc_many(speeds, rec.fs, **params), dtype=float) if speeds else np.array([])
+    bands = smoothness.sparc_bands(speeds, rec.fs, **params) if speeds else None
     for row in rows:
         if row["status"] == "":
-            row["sparc"] = float(sp[row.pop("_k")])
+            i = row.pop("_k")
+            row.update(sparc=float(bands.sparc[i]), sparc_band_end_hz=float(bands.band_end_hz[i]),
+                       sparc_capped=bool(bands.capped[i]))
             row["reason"] = _window_reason(row["contact_speed"], window)
             row["status"] = "excluded" if row["reason"] else "selected"
     out = pd.DataFrame(rows, columns=list(FEATURE_COLUMNS))
     out["n"] = out["n"].astype("Int64")
+    out["sparc_capped"] = out["sparc_capped"].astype("boolean")
     return out
 
 

@@ -14,7 +14,7 @@ import math
 import re
 import warnings
 from collections import Counter
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -26,7 +26,8 @@ from . import prototypes as pt
 from .data import MAX_RANGE_M, Recordings, read_recordings
 from .features import CONTACT_WINDOW, ONSET_SPEED, segment, select, trial_features
 from .robots import RobotSetup, get_robot, qd_limits_vector
-from .smoothness import SPARC_PARAMS
+from .sensitivity import SparcSensitivity, sparc_sensitivity
+from .smoothness import DEFAULT_AMP_TH, DEFAULT_FC, DEFAULT_PADLEVEL
 from .transfer import TransferResult, transfer, transfer_summary
 
 #: The committed synthetic cohort (default input).
@@ -43,7 +44,8 @@ Progress = Callable[[Sequence[Any], str], Any]
 
 
 class OptionError(ValueError):
-    """An option of :func:`run` (``k``, ``robot``, ``qd_max``, ``scaling``) is wrong; checked before the data."""
+    """An option of :func:`run` is wrong; checked before the data are read (``fc`` against the Nyquist
+    frequency of the recordings once their sampling rate is known)."""
 
 
 def _no_progress(items: Sequence[Any], desc: str) -> Sequence[Any]:
@@ -62,6 +64,7 @@ class PipelineRun:
     transfers: list[TransferResult] = field(default_factory=list)
     profiles: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
     messages: list[str] = field(default_factory=list)
+    sensitivity: SparcSensitivity | None = None
 
 
 def _plain(v: Any) -> Any:
@@ -84,7 +87,8 @@ def _display_path(path: Path, given: str | Path | None) -> str:
 
 def trials_section(features: pd.DataFrame) -> list[dict[str, Any]]:
     """One results.json entry per input trial: ids, status, reason and features (null when invalid)."""
-    cols = ["participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc", "ldlj"]
+    cols = ["participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
+            "sparc_band_end_hz", "sparc_capped", "ldlj"]
     out = []
     for rec in features[cols].to_dict(orient="records"):
         entry = {c: _plain(rec[c]) for c in cols}
@@ -101,6 +105,22 @@ def choose_k(requested: int, sweep: pt.SilhouetteSweep) -> tuple[int, str | None
         return requested, None
     return largest, (f"k = {requested} needs more distinct selected trials than there are; "
                      f"using k = {largest}, the largest the data allow")
+
+
+def check_sparc_params(fc: float, amp_th: float, padlevel: int) -> dict[str, float]:
+    """The SPARC parameters as a dict (fc in Hz, amp_th, padlevel); :class:`OptionError` for a bad one."""
+    try:
+        fc, amp_th = float(fc), float(amp_th)
+    except (TypeError, ValueError):
+        raise OptionError(f"fc and amp_th must be numbers, got fc = {fc!r}, amp_th = {amp_th!r}") from None
+    if not (math.isfinite(fc) and fc > 0):
+        raise OptionError(f"fc must be a maximum cut-off frequency > 0 Hz, got {fc:g}")
+    if not 0 < amp_th < 1:
+        raise OptionError(f"amp_th must lie between 0 and 1 (a fraction of the spectrum's peak), got {amp_th:g}")
+    if isinstance(padlevel, bool) or not isinstance(padlevel, (int, np.integer)) or not 0 <= padlevel <= 10:
+        raise OptionError(f"padlevel must be an integer from 0 to 10 (nfft = 2**(ceil(log2 N) + padlevel)), "
+                          f"got {padlevel!r}")
+    return {"fc": fc, "amp_th": amp_th, "padlevel": int(padlevel)}
 
 
 def check_options(k: int, robot: str, qd_max: Sequence[float] | float | None,
@@ -122,15 +142,28 @@ def check_options(k: int, robot: str, qd_max: Sequence[float] | float | None,
     return setup, limits
 
 
+def _check_nyquist(params: dict[str, float], fs: float) -> None:
+    """fc above the Nyquist frequency would take the band into the spectrum's mirror image."""
+    if np.isfinite(fs) and params["fc"] > fs / 2:
+        raise OptionError(f"fc = {params['fc']:g} Hz lies above the Nyquist frequency {fs / 2:g} Hz of these "
+                          f"recordings (sampled at {fs:g} Hz); choose fc <= {fs / 2:g} Hz")
+
+
 def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int = pt.DEFAULT_K,
         robot: str = "simple6", qd_max: Sequence[float] | float | None = None, scaling: str = "raw",
-        random_state: int = 0, progress: Progress = _no_progress, write_figures: bool = True) -> PipelineRun:
+        random_state: int = 0, fc: float = DEFAULT_FC, amp_th: float = DEFAULT_AMP_TH,
+        padlevel: int = DEFAULT_PADLEVEL, sensitivity: Sequence[Mapping[str, float]] | None = None,
+        progress: Progress = _no_progress, write_figures: bool = True) -> PipelineRun:
     """Run the pipeline on ``data`` (default: the committed synthetic cohort) and write ``out``.
 
     ``k``: clusters (the paper: 6), reduced with a message when the selected trials allow fewer;
     ``robot``: a name of :func:`skilllib.robots.get_robot`; ``qd_max``: joint velocity limits in
     rad/s (one for all joints or one per joint; default: the robot's); ``scaling``: "raw" (the paper)
-    or "standard"; ``progress(items, description)`` wraps the long loops (e.g. tqdm).
+    or "standard"; ``fc`` (Hz, at most the Nyquist frequency of the recordings), ``amp_th`` and
+    ``padlevel``: the SPARC parameters (:func:`skilllib.smoothness.sparc`; default the book's, fc = 20 Hz);
+    ``sensitivity``: other SPARC settings (dicts of some of fc, amp_th, padlevel; the rest as this run's)
+    to compare with this run's (:func:`skilllib.sensitivity.sparc_sensitivity`, results.json
+    ``sparc_sensitivity``); ``progress(items, description)`` wraps the long loops (e.g. tqdm).
     Raises :class:`OptionError` for a bad option (before reading the data) and
     :class:`skilllib.data.DataFormatError` for a file that cannot be read. Bad trials never raise: they are
     in ``results["trials"]`` as ``invalid`` with their reason. With fewer than :data:`MIN_SELECTED` selected
@@ -139,21 +172,25 @@ def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int
     """
     path = Path(data) if data is not None else DEFAULT_DATA
     setup, limits = check_options(k, robot, qd_max, scaling)
+    params = check_sparc_params(fc, amp_th, padlevel)
+    variants = [check_sparc_params(**{**params, **dict(v)}) for v in _settings(sensitivity)]
 
     if out is not None:
         out = Path(out)
         if out.exists() and not out.is_dir():
             raise OptionError(f"{out}: exists and is not a folder (--out names the folder for the results)")
     recordings = read_recordings(path)
+    for p in (params, *variants):
+        _check_nyquist(p, recordings.fs)
     if out is not None:
         out.mkdir(parents=True, exist_ok=True)
-    features = trial_features(recordings, sparc_params=dict(SPARC_PARAMS), progress=progress)
+    features = trial_features(recordings, sparc_params=params, progress=progress)
     selected = select(features)
     results: dict[str, Any] = {
         "dataset": {"path": _display_path(path, data), "n_trials": len(features),
                     "n_participants": int(features["participant"].nunique()),
                     "fs": _plain(float(recordings.fs))},
-        "sparc_params": {key: float(v) for key, v in SPARC_PARAMS.items()},
+        "sparc_params": {key: float(v) for key, v in params.items()},
         "contact_speed_window": list(CONTACT_WINDOW),
         "trials": trials_section(features),
         "n_selected": len(selected),
@@ -167,6 +204,8 @@ def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int
             f"{no_rest} of {len(features)} trials are invalid with 'no rest before onset': either the recordings "
             f"start after the movement began, or the position noise is so large that its derivative exceeds the "
             f"{ONSET_SPEED:g} m/s onset speed; then low-pass filter the positions before export (chapter 5)")
+    if len(selected):
+        result.messages.append(capped_message(selected, params))
 
     sweep = None
     if len(selected) < MIN_SELECTED:
@@ -204,6 +243,12 @@ def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int
             result.transfers.append(transfer(setup.robot, seg.t - seg.t[0], seg.pos, seg.vel, q0=setup.q0,
                                              qd_limits=limits, cluster=c))
         results["transfer"] = transfer_summary(result.transfers)
+    if variants and sweep is not None:
+        result.sensitivity = sparc_sensitivity(recordings, [params, *variants], k=results["k"], scaling=scaling,
+                                               random_state=random_state)
+        results["sparc_sensitivity"] = result.sensitivity.to_dict()
+    elif variants:
+        result.messages.append("no SPARC sensitivity analysis: too few selected trials to cluster")
     results["messages"] = result.messages
     if out is not None:
         _write_json(results, out)
@@ -211,6 +256,26 @@ def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int
             results["figures"] = _write_figures(result, out, setup.robot)
             _write_json(results, out)
     return result
+
+
+def _settings(sensitivity: Sequence[Mapping[str, float]] | None) -> list[Mapping[str, float]]:
+    """The ``sensitivity`` option as a list of settings; :class:`OptionError` for a bad one."""
+    if sensitivity is None:
+        return []
+    out = []
+    for v in sensitivity:
+        if not isinstance(v, Mapping) or not v or set(v) - {"fc", "amp_th", "padlevel"}:
+            raise OptionError(f"each sensitivity setting must give some of fc, amp_th, padlevel, got {v!r}")
+        out.append(v)
+    return out
+
+
+def capped_message(selected: pd.DataFrame, params: Mapping[str, float]) -> str:
+    """How many selected trials had their SPARC band ended by fc rather than the amplitude threshold."""
+    n = int(selected["sparc_capped"].sum())
+    return (f"{n} of {len(selected)} selected trials have their SPARC band ended by fc = {params['fc']:g} Hz rather "
+            f"than by the amplitude threshold {params['amp_th']:g} (sparc_capped): their SPARC depends on fc "
+            f"(compare settings with --sensitivity, chapter 3)")
 
 
 def _write_json(results: dict[str, Any], out: Path) -> None:
@@ -271,6 +336,13 @@ def summary_lines(run_: PipelineRun) -> list[str]:
         lim_txt = f"{lim[0]:.3g} rad/s" if np.all(lim == lim[0]) else f"{', '.join(f'{v:.3g}' for v in lim)} rad/s"
         lines.append(f"feasibility on {run_.transfers[0].robot} (joint velocity limits {lim_txt}): "
                      f"{n_ok} of {fit.k} prototypes feasible as recorded")
+    if run_.sensitivity is not None:
+        sens = run_.sensitivity
+        lines.append(f"SPARC sensitivity, against this run's {sens.reference.label}:")
+        for label, c in sens.comparison().iterrows():
+            lines.append(f"  {label}: SPARC changed in {int(c['changed'])} of {int(c['of'])} selected trials (mean |change| "
+                         f"{c['mean |change|']:.3f}, SD across trials {c['reference SD']:.3f}); ARI {c['ARI']:.2f} "
+                         f"with this run's k = {sens.k} partition; {int(c['prototypes kept'])} of {sens.k} prototypes kept")
     lines += [f"note: {m}" for m in run_.messages]
     return lines
 

@@ -42,7 +42,7 @@ import numpy as np
 import roboticstoolbox as rtb
 
 from .robots import get_robot, qd_limits_vector
-from .smoothness import sparc
+from .smoothness import DEFAULT_FC, sparc
 
 #: Experiment -> robot base rotation, ``p_base = EXP_TO_BASE @ p_exp`` (det +1):
 #: base x = exp z (anteroposterior, forward), base y = exp x (mediolateral), base z = exp y (up).
@@ -177,8 +177,8 @@ def apply_time_scale(t: np.ndarray, velocity: np.ndarray, s: float) -> tuple[np.
     rad/s). The start time t0 and the positions are unchanged; the sampling interval becomes s dt.
     Peak speed (PV) is divided by s. SPARC is unchanged when its frequency band is ended by the
     amplitude threshold: the spectrum is only rescaled in frequency (by 1/s) and amplitude, both
-    normalised away by SPARC. With the fixed cut-off fc = 10 Hz and a profile truncated at contact
-    (spectrum still above the threshold at fc), SPARC changes unless fc is scaled by 1/s too.
+    normalised away by SPARC. With a fixed cut-off fc (Hz) and a profile truncated at contact (spectrum
+    still above the threshold at fc), SPARC changes unless fc is scaled by 1/s too.
     """
     t = np.asarray(t, dtype=float)
     v = np.asarray(velocity, dtype=float)
@@ -189,7 +189,7 @@ def apply_time_scale(t: np.ndarray, velocity: np.ndarray, s: float) -> tuple[np.
     return t[0] + s * (t - t[0]), v / s
 
 
-def time_scaled_features(speed: np.ndarray, fs: float, s: float, fc: float = 10.0) -> dict[str, float]:
+def time_scaled_features(speed: np.ndarray, fs: float, s: float, fc: float = DEFAULT_FC) -> dict[str, float]:
     """PV (m/s) and SPARC of a speed profile (m/s, sampled at ``fs`` Hz) slowed uniformly by ``s``.
 
     Measured three ways (:func:`apply_time_scale`, then :func:`skilllib.smoothness.sparc`):

@@ -26,7 +26,8 @@ README_KEYS = {"dataset", "sparc_params", "contact_speed_window", "trials", "n_s
                "silhouette_valid_k", "k", "scaling", "clusters", "transfer", "messages", "figures"}
 FIGURES = ("features", "trials_by_participant", "participant_features", "silhouette_sweep", "silhouettes_k",
            "clusters_pv_sparc", "prototype_speed_profiles", "joint_velocities", "frame_mapping")
-TRIAL_KEYS = {"participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc", "ldlj"}
+TRIAL_KEYS = {"participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
+              "sparc_band_end_hz", "sparc_capped", "ldlj"}
 
 
 @pytest.fixture(scope="module")
@@ -334,7 +335,7 @@ def test_default_run_writes_results_and_figures(tmp_path):
     assert proc.returncode == 0, proc.stderr
     res = _results(out)
     assert res["dataset"] == {"path": "data/cohort.csv", "n_trials": 1500, "n_participants": 10, "fs": 60.0}
-    assert res["sparc_params"] == {"fc": 10.0, "amp_th": 0.05, "padlevel": 4.0}
+    assert res["sparc_params"] == {"fc": 20.0, "amp_th": 0.05, "padlevel": 4.0}
     assert len(res["trials"]) == 1500
     statuses = {t["status"] for t in res["trials"]}
     assert statuses <= {"selected", "excluded", "invalid"}

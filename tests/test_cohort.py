@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from skilllib import cohort
+from skilllib import calibration, cohort
 from skilllib.data import COLUMNS, format_recordings, read_recordings, recordings_from_frame
 from skilllib.features import trial_features
 
@@ -94,21 +94,21 @@ def committed_sweep(committed_features):
 
 
 def test_calibration_targets_are_met(committed_features, committed_sweep):
-    table = cohort.calibration_table(committed_features, committed_sweep)
+    table = calibration.calibration_table(committed_features, committed_sweep)
     assert table["met"].all(), table[~table["met"]]
 
 
 def test_committed_seed_survey_matches_the_committed_cohort_and_the_seed_rule(committed_features, committed_sweep):
-    survey = pd.read_csv(cohort.SURVEY_CSV, index_col="seed")
+    survey = pd.read_csv(calibration.SURVEY_CSV, index_col="seed")
     assert list(survey.index) == list(range(20))
-    v = cohort.calibration_values(committed_features, committed_sweep)
+    v = calibration.calibration_values(committed_features, committed_sweep)
     row = survey.loc[cohort.SEED]
     assert row.selected == v["n_selected"] and row.valid_k == len(v["valid_ks"])
     assert row.silhouette_k6 == pytest.approx(v["silhouette_k6"], abs=5e-4)
     assert row.centre_gap == pytest.approx(v["centre_gap"], abs=5e-4)
     assert row.participant_ratio == pytest.approx(min(v["participant_ratio"].values()), abs=5e-3)
     assert survey["all"].idxmax() == cohort.SEED and survey["all"].any()  # the first seed meeting every target
-    summary = cohort.survey_summary(survey)
+    summary = calibration.survey_summary(survey)
     assert summary["all targets"] == survey["all"].sum() <= summary.drop(["seeds", "all targets"]).min()
 
 
@@ -153,3 +153,11 @@ def test_submovement_is_an_asymmetric_minimum_jerk_bell(amp, dur, k, onset):
     assert t[np.argmax(v)] == pytest.approx(onset + k * dur, abs=2 * (t[1] - t[0]))
     np.testing.assert_allclose(np.gradient(s, t), v, atol=2e-3 * v.max())
     assert (np.diff(s) >= -1e-15).all()
+
+
+def test_model_table_gives_every_parameter_a_value_unit_and_meaning():
+    t = cohort.model_table()
+    assert list(t.index) == list(cohort.CohortModel.__dataclass_fields__)
+    assert t["meaning"].str.len().min() > 5
+    assert t.loc["fs", "unit"] == "Hz" and t.loc["noise_sd", "unit"] == "m" and t.loc["travel", "unit"] == "m"
+    assert t.loc["noise_sd", "value"] == str(cohort.CohortModel().noise_sd)

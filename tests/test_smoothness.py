@@ -18,7 +18,7 @@ from monalysa.quality.smoothness import log_dimensionless_jerk as ldlj_authors
 from monalysa.quality.smoothness import sparc as sparc_authors
 
 import skilllib
-from skilllib import smoothness
+from skilllib import _spectral, smoothness
 from skilllib.smoothness import (
     SPARC_PARAMS,
     ldlj,
@@ -26,6 +26,7 @@ from skilllib.smoothness import (
     minimum_jerk_speed,
     nfft,
     sparc,
+    sparc_bands,
     sparc_many,
     sparc_spectrum,
 )
@@ -35,12 +36,14 @@ FAST = settings(max_examples=150, deadline=None, suppress_health_check=[HealthCh
 
 
 def authors(v, fs, **kw) -> float:
+    """The authors' SPARC with the book's parameters where ``kw`` gives none (their Python default fc
+    is 10 Hz, the book's 20 Hz: the comparison is of the computation, at equal parameters)."""
     with warnings.catch_warnings(), np.errstate(all="ignore"):
         warnings.simplefilter("ignore")
-        return float(sparc_authors(np.asarray(v, dtype=float), fs, **kw)[0])
+        return float(sparc_authors(np.asarray(v, dtype=float), fs, **{**SPARC_PARAMS, **kw})[0])
 
 
-def well_conditioned(v, fs, fc=10.0, amp_th=0.05, padlevel=4) -> bool:
+def well_conditioned(v, fs, fc=smoothness.DEFAULT_FC, amp_th=0.05, padlevel=4) -> bool:
     """No bin <= fc lies within 1e-9 of the threshold: the band does not hinge on rounding, so two
     different (correct) ways of computing the spectrum must select the same band."""
     s = sparc_spectrum(v, fs, fc, amp_th, padlevel)
@@ -92,6 +95,7 @@ speeds = hnp.arrays(np.float64, st.integers(1, 300),
 signed = hnp.arrays(np.float64, st.integers(1, 300),
                     elements=st.floats(-100, 100, allow_subnormal=False))
 any_fs = st.floats(1.0, 2000.0)
+nonneg = hnp.arrays(np.float64, st.integers(2, 200), elements=st.floats(0, 10, allow_subnormal=False))
 
 
 @FAST
@@ -143,12 +147,72 @@ def test_direct_dft_and_fft_give_the_same_power(monkeypatch):
     P = np.abs(rng.normal(size=(9, 75)))
     P[3] -= 1.0  # one signed row: its peak needs the whole spectrum
     signed_rows = (P < 0).any(axis=1)
-    monkeypatch.setattr(smoothness, "_DFT_FACTOR", np.inf)
-    a2, p2 = smoothness._power(P, 2048, 342, signed_rows)
-    monkeypatch.setattr(smoothness, "_DFT_FACTOR", 0.0)
-    b2, q2 = smoothness._power(P, 2048, 342, signed_rows)
+    monkeypatch.setattr(_spectral, "_DFT_FACTOR", np.inf)
+    a2, p2 = _spectral._power(P, 2048, 342, signed_rows)
+    monkeypatch.setattr(_spectral, "_DFT_FACTOR", 0.0)
+    b2, q2 = _spectral._power(P, 2048, 342, signed_rows)
     assert np.allclose(a2, b2, rtol=1e-12, atol=1e-12 * p2.max())
     assert np.allclose(p2, q2, rtol=1e-12)
+
+
+# --- how the band ended: sparc_bands and the capped flag -------------------------------------------
+
+def authors_band_end(v, fs, **kw) -> float:
+    """Last frequency (Hz) of the band in the authors' code (``sparc(...)[2][0][-1]``)."""
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("ignore")
+        return float(sparc_authors(np.asarray(v, dtype=float), fs, **{**SPARC_PARAMS, **kw})[2][0][-1])
+
+
+@FAST
+@given(vs=st.lists(speeds, min_size=1, max_size=8), fs=st.floats(20.0, 500.0),
+       fc_share=st.floats(0.02, 0.98), amp_th=st.floats(0.01, 0.5), padlevel=st.integers(2, 6))
+def test_capped_means_a_higher_fc_would_lengthen_the_band(vs, fs, fc_share, amp_th, padlevel):
+    """``capped`` is checked against the authors' code run with fc at the Nyquist frequency: their band
+    then ends above our fc exactly when ours was capped. ``band_end_hz`` is their band end at our fc."""
+    fc = fc_share * fs / 2
+    kw = {"fc": fc, "amp_th": amp_th, "padlevel": padlevel}
+    assume(all(np.any(v) for v in vs))
+    assume(all(well_conditioned(v, fs, fs / 2, amp_th, padlevel) for v in vs))
+    b = sparc_bands(vs, fs, **kw)
+    assert b.capped.dtype == bool and b.sparc.shape == b.band_end_hz.shape == b.capped.shape == (len(vs),)
+    for i, v in enumerate(vs):
+        assert b.capped[i] == (authors_band_end(v, fs, fc=fs / 2, amp_th=amp_th, padlevel=padlevel) > fc)
+        assert b.band_end_hz[i] == pytest.approx(authors_band_end(v, fs, **kw), abs=1e-9)
+        one = sparc_spectrum(v, fs, **kw)
+        assert (one.capped, one.cutoff) == (b.capped[i], pytest.approx(b.band_end_hz[i], abs=1e-12))
+        assert abs(one.sparc - b.sparc[i]) < TOL
+    assert np.max(np.abs(b.sparc - sparc_many(vs, fs, **kw))) < TOL  # more bins may take the FFT path
+
+
+def test_a_short_truncated_profile_is_capped_at_10_hz_and_a_whole_bell_is_not():
+    t = np.arange(0, 1, 1 / 60)
+    bell = minimum_jerk_speed(t, 0, 1.0, 0.2)  # its spectrum falls below 5 % near 1.6 Hz
+    short = minimum_jerk_speed(np.arange(12) / 60, 0, 12 / 60 / 0.75, 0.2)  # cut at 74 % of its peak
+    b10, b20 = (sparc_bands([bell, short], 60.0, fc=fc) for fc in (10.0, 20.0))
+    assert b10.capped.tolist() == [False, True] and b20.capped.tolist() == [False, True]
+    assert b10.band_end_hz[0] == b20.band_end_hz[0] < 2.0  # the threshold ends the bell's band
+    assert 9.5 < b10.band_end_hz[1] <= 10.0 and 19.5 < b20.band_end_hz[1] <= 20.0  # fc ends the other
+    assert b10.sparc[1] > b20.sparc[1] + 0.1  # the lower cap cuts a longer arc short: 'smoother'
+
+
+def test_fc_at_or_above_nyquist_never_caps():
+    v = np.abs(np.random.default_rng(5).normal(size=50)) + 0.1  # noise: the spectrum stays high
+    assert sparc_bands([v], 60.0, fc=29.0).capped[0]
+    assert not sparc_bands([v], 60.0, fc=30.0).capped[0] and not sparc_spectrum(v, 60.0, fc=45.0).capped
+
+
+@FAST
+@given(v=nonneg, fs=st.floats(10.0, 500.0), amp_th=st.floats(0.01, 0.5), padlevel=st.integers(0, 6))
+def test_sparc_is_at_most_minus_the_straight_line_across_its_band(v, fs, amp_th, padlevel):
+    """The polygon is at least as long as the chord from (0, 1) to (1, V^ at the band end): an
+    uncapped band ends near amp_th, so SPARC <= about -sqrt(1 + (1 - amp_th)**2); only a cap (or a
+    coarse grid) lets the band end higher and the value rise above that."""
+    assume(np.any(v))
+    s = sparc_spectrum(v, fs, amp_th=amp_th, padlevel=padlevel)
+    assume(s.f_sel.size > 1)
+    assert s.sparc <= -np.hypot(1.0, s.Mf_sel[0] - s.Mf_sel[-1]) + 1e-12
+    assert s.Mf_sel[0] == pytest.approx(1.0, abs=1e-12)  # v >= 0: the band starts at DC, the maximum
 
 
 # --- published values ----------------------------------------------------------------------------
@@ -165,7 +229,6 @@ def test_published_values():
 
 # --- invariances ---------------------------------------------------------------------------------
 
-nonneg = hnp.arrays(np.float64, st.integers(2, 200), elements=st.floats(0, 10, allow_subnormal=False))
 
 
 @FAST
@@ -262,10 +325,11 @@ def test_sparc_many_is_batched(monkeypatch):
     vs = [minimum_jerk_speed(np.arange(n) / 60.0, 0, n / 60.0 / 0.8) for n in rng.integers(30, 91, 3000)]
     expected = np.array([sparc(v, 60.0) for v in vs])
     calls = []
-    power = smoothness._power
-    monkeypatch.setattr(smoothness, "_power", lambda P, *a: calls.append(len(P)) or power(P, *a))
-    for name in ("sparc", "sparc_spectrum", "_as_speed"):
+    power = _spectral._power
+    monkeypatch.setattr(_spectral, "_power", lambda P, *a: calls.append(len(P)) or power(P, *a))
+    for name in ("sparc", "sparc_spectrum"):
         monkeypatch.setattr(smoothness, name, None)
+    monkeypatch.setattr(_spectral, "_as_speed", None)
     assert np.max(np.abs(sparc_many(vs, 60.0) - expected)) < TOL
     assert sum(calls) == len(vs) and len(calls) <= len(vs) / 50
 
@@ -304,7 +368,8 @@ def test_nfft_is_the_authors_formula():
 
 def test_book_parameters_are_the_defaults():
     defaults = {k: p.default for k, p in inspect.signature(sparc).parameters.items() if k in SPARC_PARAMS}
-    assert defaults == dict(SPARC_PARAMS) == {"fc": 10.0, "amp_th": 0.05, "padlevel": 4}
+    # fc: the KI 2020 paper's "0 to 20 Hz" (the authors' MATLAB default), chosen in chapters 1 and 3
+    assert defaults == dict(SPARC_PARAMS) == {"fc": 20.0, "amp_th": 0.05, "padlevel": 4}
     assert skilllib.sparc is sparc
 
 
@@ -382,7 +447,7 @@ def test_bad_parameters_and_no_band():
 
 @pytest.mark.parametrize("v, words", BAD[:-1] + [([[0.1], [0.2]], "1-D"), (0.3, "1-D")])
 def test_sparc_many_names_the_bad_profile(v, words, monkeypatch):
-    monkeypatch.setattr(smoothness, "_CHUNK", 4)  # the index must count across blocks
+    monkeypatch.setattr(_spectral, "_CHUNK", 4)  # the index must count across blocks
     good = minimum_jerk_speed(np.linspace(0, 1, 40))
     vs = [good] * 9 + [v] + [good] * 3
     for fn in (sparc_many, ldlj_many):

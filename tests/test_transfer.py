@@ -170,14 +170,15 @@ def test_time_scaling_makes_an_infeasible_prototype_feasible():
 
 
 def test_time_scaling_divides_pv_and_keeps_sparc():
-    # full minimum-jerk bell: the SPARC band ends at the amplitude threshold, far below fc
+    # full minimum-jerk bell: the SPARC band ends at the amplitude threshold (about 1.6 Hz), far below
+    # fc = 5 Hz, which stays below the Nyquist frequency of every stretched version (60 / 3.7 / 2 Hz)
     t, _, v = minimum_jerk_descent(0.2, 1.0, fraction=1.0)
     speed = np.linalg.norm(v, axis=1)
     fs = 1 / (t[1] - t[0])
     for s in (1.26, 2.0, 3.7):
         t2, speed2 = apply_time_scale(t, speed, s)
         assert speed2.max() == pytest.approx(speed.max() / s)
-        assert sparc(speed2, 1 / (t2[1] - t2[0])) == pytest.approx(sparc(speed, fs), abs=1e-12)
+        assert sparc(speed2, 1 / (t2[1] - t2[0]), fc=5.0) == pytest.approx(sparc(speed, fs, fc=5.0), abs=1e-12)
 
 
 def test_sparc_of_a_truncated_profile_needs_a_scaled_cutoff():
