@@ -12,8 +12,9 @@ SCRIPTS = sorted(NOTEBOOKS.glob("[0-9][0-9]_*.py"))
 IPYNBS = sorted(NOTEBOOKS.glob("*.ipynb"))
 
 
-def _cells(nb) -> list[tuple[str, str]]:
-    return [(c.cell_type, c.source.strip()) for c in nb.cells]
+def _cells(nb) -> list[tuple[str, str, tuple[str, ...]]]:
+    """Type, source and tags of every cell (tags such as remove-cell decide what the site shows)."""
+    return [(c.cell_type, c.source.strip(), tuple(c.metadata.get("tags", ()))) for c in nb.cells]
 
 
 def test_there_are_chapters():
