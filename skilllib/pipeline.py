@@ -293,9 +293,11 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
         fg.plt.close(fig)
 
     if (run_.features["status"] != "invalid").any():  # the data figures need at least one valid trial
-        keep(fg.plot_feature_overview(run_.features), "features")
+        keep(fg.plot_feature_overview(run_.features, run_.results["sparc_params"]["amp_th"]), "features")
         keep(fg.plot_trials_by_participant(run_.recordings, run_.features), "trials_by_participant")
         keep(fg.plot_participant_features(run_.features), "participant_features")
+        keep(fg.plot_sparc_vs_length(run_.features, run_.recordings.fs, run_.results["sparc_params"]["amp_th"]),
+             "sparc_vs_length")
     if run_.prototypes is not None:
         keep(fg.plot_silhouette_sweep(run_.sweep, chosen_k=run_.prototypes.k), "silhouette_sweep")
         keep(fg.plot_silhouettes(run_.prototypes), "silhouettes_k")
@@ -303,6 +305,8 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
         keep(fg.plot_prototype_profiles(run_.profiles, run_.prototypes.prototypes), "prototype_speed_profiles")
         keep(fg.plot_joint_velocities(run_.transfers), "joint_velocities")
         keep(fg.plot_frame_mapping(robot, run_.transfers[-1]), "frame_mapping")  # the fastest prototype
+    if run_.sensitivity is not None:
+        keep(fg.plot_sparc_sensitivity(run_.sensitivity), "sparc_sensitivity")
     return written
 
 

@@ -18,14 +18,15 @@ import pytest
 from skilllib import prototypes as pt
 from skilllib.__main__ import main
 from skilllib.cohort import CohortModel, generate_cohort
-from skilllib.data import write_recordings
-from skilllib.features import select, trial_features
+from skilllib.data import read_recordings, write_recordings
+from skilllib.features import segment, select, trial_features
+from skilllib.smoothness import SPARC_PARAMS, sparc_spectrum
 
 ROOT = Path(__file__).resolve().parents[1]
 README_KEYS = {"dataset", "sparc_params", "contact_speed_window", "trials", "n_selected", "silhouette",
                "silhouette_valid_k", "k", "scaling", "clusters", "transfer", "messages", "figures"}
-FIGURES = ("features", "trials_by_participant", "participant_features", "silhouette_sweep", "silhouettes_k",
-           "clusters_pv_sparc", "prototype_speed_profiles", "joint_velocities", "frame_mapping")
+FIGURES = ("features", "trials_by_participant", "participant_features", "sparc_vs_length", "silhouette_sweep",
+           "silhouettes_k", "clusters_pv_sparc", "prototype_speed_profiles", "joint_velocities", "frame_mapping")
 TRIAL_KEYS = {"participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
               "sparc_band_end_hz", "sparc_capped", "ldlj"}
 
@@ -268,6 +269,99 @@ def test_bad_options_are_one_line(tmp_path, capsys, small_frame):
         main(["run", "--data", str(data), "--out", str(tmp_path / "o"), "--robot", "r2d2"])
     assert e.value.code == 2
     assert "simple6" in capsys.readouterr().err
+
+
+# --- the SPARC parameters: used as given, reported as used -----------------------------------------
+
+@pytest.mark.parametrize("opts, params", [
+    ([], dict(SPARC_PARAMS)),
+    (["--fc", "10"], {**SPARC_PARAMS, "fc": 10.0}),
+    (["--fc", "15", "--amp-th", "0.1", "--padlevel", "3"], {"fc": 15.0, "amp_th": 0.1, "padlevel": 3}),
+], ids=["default", "fc10", "all-three"])
+def test_sparc_options_are_used_for_every_trial_and_reported(tmp_path, capsys, small_frame, opts, params):
+    """Each valid trial's SPARC, band end and capped flag equal sparc_spectrum of its own segment with the
+    parameters the run reports; the capped count in messages is that of the selected trials."""
+    data = _write(small_frame, tmp_path / "rec.csv")
+    code, out, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"), "--no-figures", *opts)
+    assert code == 0, err
+    res = _results(tmp_path / "o")
+    assert res["sparc_params"] == {k: float(v) for k, v in params.items()}
+    rec = read_recordings(data)  # as the run read it (positions rounded to 0.01 mm by the writer)
+    n_checked = n_capped = 0
+    for t in res["trials"]:
+        if t["status"] == "invalid":
+            assert t["sparc"] is None and t["sparc_band_end_hz"] is None and t["sparc_capped"] is None
+            continue
+        s = sparc_spectrum(segment(rec, t["participant"], t["trial"]).speed, rec.fs, **params)
+        assert t["sparc"] == pytest.approx(s.sparc, abs=1e-9)
+        assert t["sparc_band_end_hz"] == pytest.approx(s.cutoff, abs=1e-9) and t["sparc_capped"] is s.capped
+        assert t["sparc_band_end_hz"] <= params["fc"]
+        n_checked += 1
+        n_capped += s.capped and t["status"] == "selected"
+    assert n_checked == int((trial_features(rec).status != "invalid").sum()) > 20
+    note = [m for m in res["messages"] if "SPARC band ended by fc" in m]
+    assert len(note) == 1 and note[0].startswith(f"{n_capped} of {res['n_selected']} selected trials")
+    assert f"fc = {params['fc']:g} Hz" in note[0] and "note: " + note[0] in out
+
+
+def test_sparc_settings_change_the_values_that_depend_on_them_only(tmp_path, capsys, small_frame):
+    data = _write(small_frame, tmp_path / "rec.csv")
+    runs = {}
+    for fc in ("20", "10"):
+        assert _run(capsys, "--data", str(data), "--out", str(tmp_path / fc), "--no-figures", "--fc", fc)[0] == 0
+        runs[fc] = _results(tmp_path / fc)
+    a, b = (pd.DataFrame(runs[fc]["trials"]) for fc in ("20", "10"))
+    same = ["participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "ldlj"]
+    pd.testing.assert_frame_equal(a[same], b[same])  # segmentation and selection do not use SPARC
+    valid = a.status != "invalid"
+    assert (a.sparc[valid] != b.sparc[valid]).any() and b.sparc_capped[valid].sum() >= a.sparc_capped[valid].sum()
+
+
+def test_sensitivity_compares_with_the_runs_own_setting(tmp_path, capsys, small_frame):
+    data = _write(small_frame, tmp_path / "rec.csv")
+    code, out, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"),
+                          "--k", "3", "--sensitivity", "fc=10", "fc=20,amp_th=0.1")
+    assert code == 0, err
+    res = _results(tmp_path / "o")
+    sens = res["sparc_sensitivity"]
+    assert sens["k"] == res["k"] == 3
+    assert [s["params"] for s in sens["settings"]] == [
+        {"fc": 20.0, "amp_th": 0.05, "padlevel": 4}, {"fc": 10.0, "amp_th": 0.05, "padlevel": 4},
+        {"fc": 20.0, "amp_th": 0.1, "padlevel": 4}]
+    ref = sens["settings"][0]
+    assert [(p["participant"], p["trial"]) for p in ref["prototypes"]] == [
+        (c["prototype"]["participant"], c["prototype"]["trial"]) for c in res["clusters"]]  # the run's own fit
+    selected = [t for t in res["trials"] if t["status"] == "selected"]
+    rec = read_recordings(data)
+    for entry in sens["settings"][1:]:
+        changed = sum(abs(t["sparc"] - sparc_spectrum(segment(rec, t["participant"], t["trial"]).speed,
+                                                      rec.fs, **entry["params"]).sparc) > 1e-9 for t in selected)
+        assert entry["vs_reference"]["n_sparc_changed"] == changed
+    assert "SPARC sensitivity, against this run's fc 20 Hz" in out and "fc 10 Hz, amp_th 0.05, padlevel 4:" in out
+    assert {"sparc_sensitivity.png", "sparc_sensitivity.svg"} <= set(res["figures"])
+
+
+@pytest.mark.parametrize("opts, words", [
+    (["--fc", "60"], ("Nyquist", "50 Hz")),
+    (["--sensitivity", "fc=80"], ("Nyquist", "fc = 80")),
+    (["--fc", "0"], ("fc must",)),
+    (["--amp-th", "1.5"], ("amp_th", "between 0 and 1")),
+    (["--padlevel", "-1"], ("padlevel", "0 to 10")),
+])
+def test_bad_sparc_options_are_one_line(tmp_path, capsys, small_frame, opts, words):
+    data = _write(small_frame, tmp_path / "rec.csv")
+    code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"), *opts)
+    assert code == 2
+    _one_line_error(err, *words)
+    assert not (tmp_path / "o" / "results.json").exists()
+
+
+def test_bad_sensitivity_settings_are_option_errors(tmp_path, capsys):
+    for bad in ("fq=10", "fc=ten"):
+        with pytest.raises(SystemExit) as e:
+            main(["run", "--out", str(tmp_path / "o"), "--sensitivity", bad])
+        assert e.value.code == 2
+        assert bad.split("=")[0] in capsys.readouterr().err
 
 
 # --- trial-level problems: that trial invalid with a reason, the rest processed ----------------------

@@ -11,10 +11,12 @@ import matplotlib.pyplot as plt
 
 from ._common import CLUSTER_COLORS, save
 from .clusters import (
+    plot_cluster_participants,
     plot_clusters,
     plot_prototype_profiles,
     plot_silhouette_sweep,
     plot_silhouettes,
+    plot_sparc_sensitivity,
     plot_stability,
 )
 from .experiment import (
@@ -25,7 +27,9 @@ from .experiment import (
     plot_feature_space,
     plot_participant_features,
     plot_segmentation,
+    plot_sparc_vs_length,
     plot_trials_by_participant,
+    threshold_bound,
 )
 from .robot import (
     JOINT_COLORS,
@@ -42,8 +46,9 @@ __all__ = [
     "plt", "save", "CLUSTER_COLORS", "PARTICIPANT_COLORS", "JOINT_COLORS",
     "plot_sparc_spectra", "plot_speeds_and_spectra", "plot_sparc_against",
     "plot_trials_by_participant", "plot_segmentation", "plot_participant_features", "plot_contact_speeds",
-    "plot_feature_space", "plot_feature_overview", "plot_estimates_vs_truth",
-    "plot_silhouette_sweep", "plot_silhouettes", "plot_clusters", "plot_prototype_profiles", "plot_stability",
+    "plot_feature_space", "plot_feature_overview", "plot_estimates_vs_truth", "plot_sparc_vs_length",
+    "threshold_bound", "plot_silhouette_sweep", "plot_silhouettes", "plot_clusters", "plot_prototype_profiles",
+    "plot_stability", "plot_sparc_sensitivity", "plot_cluster_participants",
     "plot_robot_joints", "plot_robot_pose", "plot_simple6_figure", "plot_start_poses",
     "plot_joint_velocities", "plot_frame_mapping",
 ]

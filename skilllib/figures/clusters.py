@@ -6,6 +6,7 @@ import numpy as np
 import pandas as pd
 
 from ..prototypes import PrototypeResult, SilhouetteSweep
+from ..sensitivity import SparcSensitivity
 from ._common import CLUSTER_COLORS
 
 
@@ -116,4 +117,50 @@ def plot_stability(ari: dict[str, np.ndarray], seed: int = 0) -> plt.Figure:
     ax.set_xticks(range(len(ari)), [n.replace(", ", "\n") for n in ari], fontsize="small")
     ax.set_ylabel("adjusted Rand index")
     ax.set_ylim(top=1.02)
+    return fig
+
+
+def plot_sparc_sensitivity(sens: SparcSensitivity) -> plt.Figure:
+    """Left: each selected trial's SPARC under every other setting against the reference setting
+    (identity dashed; trials whose band that setting's fc ended drawn as rings). Right: average silhouette
+    against k under every setting. ``sens``: :func:`skilllib.sensitivity.sparc_sensitivity`."""
+    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained")
+    ref = sens.reference.selected["sparc"].to_numpy()
+    for i, run in enumerate(sens.runs[1:], start=1):
+        y = run.selected["sparc"].to_numpy()
+        cap = run.selected["sparc_capped"].to_numpy(dtype=bool)
+        a.scatter(ref[~cap], y[~cap], s=6, color=_cluster_color(i), label=f"{run.label}: band ended by amp_th")
+        a.scatter(ref[cap], y[cap], s=12, facecolor="none", edgecolor=_cluster_color(i), lw=0.7,
+                  label=f"{run.label}: band ended by fc ({int(cap.sum())})")
+    lo = min(ref.min(), *(r.selected["sparc"].min() for r in sens.runs))
+    hi = max(ref.max(), *(r.selected["sparc"].max() for r in sens.runs))
+    a.plot([lo, hi], [lo, hi], "--", color="0.4", lw=0.8)
+    a.set_xlabel(f"SPARC, {sens.reference.label}")
+    a.set_ylabel("SPARC, other setting")
+    a.legend(fontsize=7, frameon=False, loc="lower right")
+    for i, run in enumerate(sens.runs):
+        if run.sweep is not None:
+            b.plot(run.sweep.ks, run.sweep.scores, "o-", ms=3, color=_cluster_color(i), label=run.label)
+    b.axvline(sens.k, color="0.5", ls=":", lw=1)
+    b.set_xlabel("number of clusters k")
+    b.set_ylabel("average silhouette")
+    b.legend(fontsize=7, frameon=False)
+    return fig
+
+
+def plot_cluster_participants(table: pd.DataFrame) -> plt.Figure:
+    """Trials per cluster (rows, 0 = lowest centre PV) and participant (columns) as a heat map with the
+    counts written in; ``table`` as :func:`skilllib.participants.cluster_participant_table` (its ``all``
+    totals are left out)."""
+    t = table.drop(index="all", columns="all", errors="ignore")
+    fig, ax = plt.subplots(figsize=(1.2 + 0.55 * t.shape[1], 0.9 + 0.45 * t.shape[0]), layout="constrained")
+    im = ax.imshow(t.to_numpy(), cmap="Greys", aspect="auto")
+    vmax = t.to_numpy().max()
+    for (i, j), n in np.ndenumerate(t.to_numpy()):
+        ax.text(j, i, str(n), ha="center", va="center", fontsize=7, color="white" if n > 0.6 * vmax else "black")
+    ax.set_xticks(range(t.shape[1]), [str(c) for c in t.columns])
+    ax.set_yticks(range(t.shape[0]), [str(r) for r in t.index])
+    ax.set_xlabel("participant")
+    ax.set_ylabel("cluster (0 = lowest centre PV)")
+    fig.colorbar(im, ax=ax, label="trials", shrink=0.8)
     return fig

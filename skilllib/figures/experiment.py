@@ -10,6 +10,7 @@ from matplotlib.collections import LineCollection
 
 from ..data import Recordings
 from ..features import CONTACT_WINDOW, ONSET_SPEED, velocity
+from ..smoothness import DEFAULT_AMP_TH
 
 #: Colours of the participants (in sorted participant order): tab10 with its grey replaced by black,
 #: because grey marks excluded trials.
@@ -146,8 +147,27 @@ def plot_contact_speeds(features: pd.DataFrame, bin_width: float = 0.05, ax: plt
     return fig
 
 
-def plot_feature_space(features: pd.DataFrame, ax: plt.Axes | None = None) -> plt.Figure:
-    """Peak speed PV (m/s) against SPARC: selected trials coloured by participant, excluded in grey."""
+def threshold_bound(amp_th: float = DEFAULT_AMP_TH) -> float:
+    """About the highest SPARC a band ended by the amplitude threshold can have: the chord from (0, 1) to
+    (1, amp_th), -sqrt(1 + (1 - amp_th)**2) (chapter 1). Higher values come from bands capped by fc."""
+    return -float(np.hypot(1.0, 1.0 - amp_th))
+
+
+def _mark_capped(ax: plt.Axes, f: pd.DataFrame, x: str, amp_th: float) -> None:
+    """Ring the trials whose SPARC band fc ended and draw the threshold-ended bound (dashed)."""
+    if "sparc_capped" in f.columns:
+        cap = f[f["sparc_capped"].fillna(False).astype(bool)]
+        ax.scatter(cap[x], cap["sparc"], s=16, facecolor="none", edgecolor="k", lw=0.5,
+                   label=f"band ended by fc ({len(cap)})", zorder=4)
+    ax.axhline(threshold_bound(amp_th), color="0.3", ls="--", lw=0.8,
+               label=f"highest SPARC of a band ended by amp_th = {amp_th:g}")
+
+
+def plot_feature_space(features: pd.DataFrame, ax: plt.Axes | None = None,
+                       amp_th: float = DEFAULT_AMP_TH) -> plt.Figure:
+    """Peak speed PV (m/s) against SPARC: selected trials coloured by participant, excluded in grey;
+    trials whose SPARC band the maximum cut-off fc ended (``sparc_capped``) ringed, and the dashed line
+    :func:`threshold_bound` above which only such trials can lie."""
     f = features[features["status"] != "invalid"]
     parts = sorted(f["participant"].unique())
     fig, ax = plt.subplots(figsize=(6, 4)) if ax is None else (ax.figure, ax)
@@ -156,18 +176,48 @@ def plot_feature_space(features: pd.DataFrame, ax: plt.Axes | None = None) -> pl
     for p in parts:
         g = f[(f["participant"] == p) & (f["status"] == "selected")]
         ax.scatter(g["pv"], g["sparc"], s=6, color=_pcolor(parts, p), label=_plabel(p))
+    _mark_capped(ax, f, "pv", amp_th)
     ax.set_xlabel("peak speed PV (m/s)")
     ax.set_ylabel("SPARC")
-    ax.legend(fontsize=6.5, frameon=False, ncol=2, loc="lower right", markerscale=2)
+    ax.legend(fontsize=6.5, frameon=False, ncol=2, loc="upper left", bbox_to_anchor=(1.01, 1), markerscale=2)
     return fig
 
 
-def plot_feature_overview(features: pd.DataFrame) -> plt.Figure:
+def plot_sparc_vs_length(features: pd.DataFrame, fs: float, amp_th: float = DEFAULT_AMP_TH) -> plt.Figure:
+    """Left: SPARC of every valid trial against its segment length N in samples (top axis: the duration
+    N / fs in s); selected trials blue, excluded grey, bands ended by fc ringed, the threshold-ended bound
+    dashed. Right: the share of bands ended by fc at each N (bars; valid trials), with the number of
+    trials at each N."""
+    f = features[features["status"] != "invalid"]
+    sel = (f["status"] == "selected").to_numpy()
+    n = f["n"].astype(float).to_numpy()
+    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained", width_ratios=(3, 2))
+    g = f.assign(_x=n + np.random.default_rng(0).uniform(-0.25, 0.25, len(f)))  # jitter the integers
+    a.scatter(g.loc[~sel, "_x"], g.loc[~sel, "sparc"], s=4, color="0.75", label="excluded")
+    a.scatter(g.loc[sel, "_x"], g.loc[sel, "sparc"], s=5, color="C0", label="selected")
+    _mark_capped(a, g, "_x", amp_th)
+    a.set_xlabel(f"segment length N (samples at {fs:g} Hz, jittered)")
+    a.set_ylabel("SPARC")
+    top = a.secondary_xaxis("top", functions=(lambda x: x / fs, lambda d: d * fs))
+    top.set_xlabel("duration N / fs (s)")
+    a.legend(fontsize=7, frameon=False, loc="lower left")
+    if "sparc_capped" in f.columns:
+        share = f.assign(_c=f["sparc_capped"].astype(float)).groupby(n)["_c"].agg(["mean", "size"])
+        b.bar(share.index, share["mean"], width=0.8, color="0.5")
+        for x, (m, k) in share.iterrows():
+            b.text(x, m + 0.02, str(int(k)), ha="center", va="bottom", fontsize=5.5, rotation=90)
+        b.set_ylim(0, 1.15)
+        b.set_xlabel("segment length N (samples)")
+        b.set_ylabel("share of bands ended by fc")
+    return fig
+
+
+def plot_feature_overview(features: pd.DataFrame, amp_th: float = DEFAULT_AMP_TH) -> plt.Figure:
     """The pipeline's features figure: contact-speed histogram with the selection window (m/s) and
-    PV (m/s) against SPARC of the valid trials."""
-    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 3.8))
+    PV (m/s) against SPARC of the valid trials (:func:`plot_feature_space`)."""
+    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 3.8))
     plot_contact_speeds(features, ax=a)
-    plot_feature_space(features, ax=b)
+    plot_feature_space(features, ax=b, amp_th=amp_th)
     fig.tight_layout()
     return fig
 
