@@ -210,3 +210,23 @@ def minimum_jerk_speed(t: ArrayLike, t0: ArrayLike = 0.0, T: ArrayLike = 1.0,
     tau = (np.asarray(t, dtype=float) - t0) / T
     inside = (tau >= 0) & (tau <= 1)
     return np.where(inside, np.asarray(D) / T * 30 * tau ** 2 * (1 - tau) ** 2, 0.0)
+
+
+def minimum_jerk_segment(n: int, contact_ratio: float, fs: float, onset_ratio: float = 0.05) -> np.ndarray:
+    """Speed samples (in units of the peak speed) of one minimum-jerk movement segmented as the
+    experiment's trials are: from the onset, where the speed reaches ``onset_ratio`` of the peak (sample
+    0), to the last sample before the contact, where it has fallen to ``contact_ratio`` of the peak on
+    the falling flank (sample n would lie there); the movement's duration is chosen so that this takes
+    exactly ``n`` samples at ``fs`` Hz (duration n / fs). The same shape at every n: SPARC should not
+    depend on n.
+
+    With v / v_peak = 16 tau**2 (1 - tau)**2 (Flash & Hogan 1985), onset and contact fall at
+    tau = (1 -+ sqrt(1 - sqrt(ratio))) / 2."""
+    if not (0 < onset_ratio < 1 and 0 < contact_ratio < 1) or n < 1:
+        raise ValueError(f"need n >= 1 and ratios in (0, 1); got n = {n}, onset_ratio = {onset_ratio}, "
+                         f"contact_ratio = {contact_ratio}")
+    tau0 = (1 - np.sqrt(1 - np.sqrt(onset_ratio))) / 2
+    tau_c = (1 + np.sqrt(1 - np.sqrt(contact_ratio))) / 2
+    T = n / fs / (tau_c - tau0)  # s: the whole movement's duration
+    tau = tau0 + np.arange(n) / fs / T
+    return 16 * tau ** 2 * (1 - tau) ** 2

@@ -460,3 +460,15 @@ def test_sparc_many_names_the_bad_profile(v, words, monkeypatch):
         sparc(cropped, 60.0, padlevel=-1)
     with pytest.raises(ValueError, match=r"speeds\[1\] is zero over its first nfft = 4"):
         sparc_many([good[:5], cropped], 60.0, padlevel=-1)
+
+
+@pytest.mark.parametrize("n, ratio", [(8, 0.3), (20, 0.5), (200, 0.7)])
+def test_minimum_jerk_segment_runs_from_onset_to_contact_in_n_samples(n, ratio):
+    v = smoothness.minimum_jerk_segment(n, ratio, 60.0)
+    assert v.size == n and v[0] == pytest.approx(0.05) and v.max() <= 1.0
+    T = n / 60.0 / (((1 + np.sqrt(1 - np.sqrt(ratio))) - (1 - np.sqrt(1 - np.sqrt(0.05)))) / 2)
+    full = minimum_jerk_speed(np.arange(-1, n + 1) / 60.0 + (1 - np.sqrt(1 - np.sqrt(0.05))) / 2 * T, 0, T, 1 / 1.875 * T)
+    np.testing.assert_allclose(v, full[1:-1], atol=1e-12)  # the same bell, peak 1
+    assert full[0] < 0.05 and full[-1] == pytest.approx(ratio) and v[-1] > ratio  # onset and contact samples
+    if n >= 100:
+        assert v.max() == pytest.approx(1.0, abs=1e-3)
