@@ -34,9 +34,15 @@ def _check_fs(fs: float) -> float:
     return fs
 
 
-def _check_params(fc: float, amp_th: float, padlevel: float) -> None:
+def _check_params(fc: float, amp_th: float, padlevel: float, fs: float) -> None:
+    """ValueError for a bad parameter. fc must not exceed the Nyquist frequency fs / 2: the authors' code
+    would then run the band into the mirror image of the spectrum (bins between fs / 2 and fs), which
+    belongs to no frequency of the movement."""
     if not float(fc) >= 0:  # also catches NaN
         raise ValueError(f"fc must be a cut-off frequency >= 0 Hz; got {fc}")
+    if fc > fs / 2:
+        raise ValueError(f"fc = {fc:g} Hz lies above the Nyquist frequency {fs / 2:g} Hz of samples at {fs:g} Hz "
+                         f"(the band would run into the mirror image of the spectrum); use fc <= {fs / 2:g} Hz")
     if not np.isfinite(amp_th):
         raise ValueError(f"amp_th must be a finite amplitude threshold; got {amp_th}")
     if not np.isfinite(padlevel):
@@ -77,12 +83,9 @@ def frequencies(n_fft: int, fs: float) -> np.ndarray:
     return np.arange(0, fs, fs / n_fft)
 
 
-def _n_kept(f: np.ndarray, fc: float, n_fft: int) -> int:
-    """Number of bins with f <= fc (a prefix of the grid)."""
-    k = int(np.searchsorted(f, fc, side="right"))
-    if k > n_fft:
-        raise ValueError(f"fc = {fc} Hz lies beyond the frequency grid (fs too small for this fc)")
-    return k
+def _n_kept(f: np.ndarray, fc: float) -> int:
+    """Number of bins with f <= fc (a prefix of the grid; fc <= fs / 2 keeps it within the grid)."""
+    return int(np.searchsorted(f, fc, side="right"))
 
 
 # --- band and arc length (shared by every path) ----------------------------------------------------
@@ -214,8 +217,8 @@ def _sparc_block(flat: np.ndarray, lengths: np.ndarray, start: int, fs: float, f
         L = int(min(lengths[group].max(), n_fft))  # np.fft.fft(v, nfft) crops when nfft < N
         col = np.arange(L)
         f = frequencies(n_fft, fs)
-        k = _n_kept(f, fc, n_fft)
-        k_eval = max(k, n_fft // 2 + 1) if bands else k  # up to Nyquist for the capped test
+        k = _n_kept(f, fc)
+        k_eval = n_fft // 2 + 1 if bands else k  # up to Nyquist for the capped test (k <= that)
         step = max(8, _CACHE_ELEMENTS // max(k_eval, L))
         for rows in (group[i:i + step] for i in range(0, group.size, step)):
             idx = np.where(col < lengths[rows, None], offsets[rows, None] + col, flat.size - 1)

@@ -4,7 +4,9 @@ SPARC is computed exactly as its authors' code does (``monalysa.quality.smoothne
 oracle): ``nfft = 2**(ceil(log2 N) + padlevel)``, the frequency grid ``arange(0, fs, fs/nfft)``, the FFT
 magnitude normalised by its maximum, the bins ``f <= fc``, the band from the first to the last of them at
 or above ``amp_th``, and the arc length of the normalised spectrum over that band with the frequency axis
-divided by the band's width. Chapter 1 of the book derives the discrete sum from the integral.
+divided by the band's width. Chapter 1 of the book derives the discrete sum from the integral. One
+deliberate difference: ``fc`` above the Nyquist frequency ``fs / 2`` raises ValueError, where the
+authors' code lets the band run on into the mirror image of the spectrum (bins between fs / 2 and fs).
 
 :func:`sparc_spectrum` and :func:`sparc` use ``numpy.fft.fft`` like the authors. :func:`sparc_many`
 evaluates only the bins it needs, for many profiles at once: a direct DFT by matrix product for short
@@ -83,10 +85,10 @@ def sparc_spectrum(speed: ArrayLike, fs: float, fc: float = DEFAULT_FC, amp_th: 
     evaluated as the authors' code does."""
     v = _as_speed(speed)
     fs = _check_fs(fs)
-    _check_params(fc, amp_th, padlevel)
+    _check_params(fc, amp_th, padlevel, fs)
     n_fft = nfft(v.size, padlevel)
     f = frequencies(n_fft, fs)
-    k = _n_kept(f, fc, n_fft)
+    k = _n_kept(f, fc)
     Mf = np.abs(np.fft.fft(v / np.abs(v).max(), n_fft))  # amplitude invariant; no overflow, as sparc_many
     peak = Mf.max()
     if not peak > 0:  # padlevel < 0: np.fft.fft(v, nfft) keeps only the first nfft samples
@@ -107,8 +109,8 @@ def sparc(speed: ArrayLike, fs: float, fc: float = DEFAULT_FC, amp_th: float = D
     """Spectral arc length SPARC of a speed profile (m/s) sampled at ``fs`` Hz; dimensionless, <= -1.
 
     Balasubramanian et al. 2015 (definition of SPARC, with the adaptive cut-off), computed as the
-    authors' code ``monalysa.quality.smoothness.sparc``. ``fc`` (Hz) caps the band, ``amp_th`` sets the
-    adaptive cut-off, ``padlevel`` the zero padding. Closer to -1 is smoother. A band of a single bin
+    authors' code ``monalysa.quality.smoothness.sparc``. ``fc`` (Hz, at most fs / 2) caps the band,
+    ``amp_th`` sets the adaptive cut-off, ``padlevel`` the zero padding. Closer to -1 is smoother. A band of a single bin
     (grid step fs/nfft > fc) gives 0, as in the authors' code. See :func:`sparc_spectrum`."""
     return sparc_spectrum(speed, fs, fc, amp_th, padlevel).sparc
 
@@ -116,7 +118,7 @@ def sparc(speed: ArrayLike, fs: float, fc: float = DEFAULT_FC, amp_th: float = D
 def _sparc_blocks(speeds: Sequence[ArrayLike] | np.ndarray, fs: float, fc: float, amp_th: float,
                   padlevel: float, bands: bool) -> np.ndarray:
     fs = _check_fs(fs)
-    _check_params(fc, amp_th, padlevel)
+    _check_params(fc, amp_th, padlevel, fs)
     with _one_blas_thread():
         parts = [_sparc_block(*_pack(block, start), start, fs, fc, amp_th, padlevel, bands)
                  for start, block in _blocks(speeds)]

@@ -192,20 +192,21 @@ def apply_time_scale(t: np.ndarray, velocity: np.ndarray, s: float) -> tuple[np.
 def time_scaled_features(speed: np.ndarray, fs: float, s: float, fc: float = DEFAULT_FC) -> dict[str, float]:
     """PV (m/s) and SPARC of a speed profile (m/s, sampled at ``fs`` Hz) slowed uniformly by ``s``.
 
-    Measured three ways (:func:`apply_time_scale`, then :func:`skilllib.smoothness.sparc`):
-    ``pv``, ``sparc_fc_scaled`` and ``sparc_fixed_fc`` on the stretched samples (``fs / s`` Hz) with the
-    cut-off ``fc / s`` or ``fc`` Hz; ``pv_resampled``, ``sparc_resampled_fc_scaled`` and
-    ``sparc_resampled_fixed_fc`` after linear resampling at ``fs`` (``n_resampled`` samples), as a
-    recording of the slowed movement at the experiment's rate would give.
+    On the stretched samples themselves (``fs / s`` Hz apart, :func:`apply_time_scale`): ``pv`` and
+    ``sparc_fc_scaled``, SPARC with the cut-off scaled to ``fc / s``, which equals the original's exactly
+    (the same samples on a frequency axis compressed by s). As a recording of the slowed movement at the
+    experiment's rate would give it, after linear resampling at ``fs`` (``n_resampled`` samples):
+    ``pv_resampled``, ``sparc_resampled_fc_scaled`` (cut-off fc / s) and ``sparc_resampled_fixed_fc``
+    (cut-off fc, the pipeline's measurement). A fixed fc on the stretched samples themselves is not
+    offered: their Nyquist frequency fs / (2 s) falls below fc once s > fs / (2 fc).
     """
     v = np.asarray(speed, dtype=float)
     t_s, v_s = apply_time_scale(np.arange(v.size) / fs, v, s)  # the stretched samples, s / fs apart
     t_r = np.arange(t_s[0], t_s[-1] + 1e-9, 1 / fs)
     v_r = np.interp(t_r, t_s, v_s)
     return {"pv": float(v_s.max()), "sparc_fc_scaled": sparc(v_s, fs / s, fc=fc / s),
-            "sparc_fixed_fc": sparc(v_s, fs / s, fc=fc), "n_resampled": int(v_r.size),
-            "pv_resampled": float(v_r.max()), "sparc_resampled_fc_scaled": sparc(v_r, fs, fc=fc / s),
-            "sparc_resampled_fixed_fc": sparc(v_r, fs, fc=fc)}
+            "n_resampled": int(v_r.size), "pv_resampled": float(v_r.max()),
+            "sparc_resampled_fc_scaled": sparc(v_r, fs, fc=fc / s), "sparc_resampled_fixed_fc": sparc(v_r, fs, fc=fc)}
 
 
 def minimum_jerk_descent(amplitude: float = 0.2, peak_speed: float = 1.0, fs: float = 60.0,

@@ -355,3 +355,7 @@ def test_time_scaled_features_divide_pv_and_keep_sparc_with_the_scaled_cut_off()
     assert m["pv"] == pytest.approx(v.max() / 1.7, rel=1e-12)
     assert m["sparc_fc_scaled"] == pytest.approx(sparc(v, 60.0), abs=1e-12)
     assert m["n_resampled"] > v.size and m["pv_resampled"] <= m["pv"] + 1e-12
+    assert "sparc_fixed_fc" not in m  # the stretched samples' Nyquist frequency (17.6 Hz) is below fc
+    t_r = np.arange(0, (v.size - 1) / 60 * 1.7 + 1e-9, 1 / 60)
+    v_r = np.interp(t_r, np.arange(v.size) / 60 * 1.7, v / 1.7)
+    assert m["sparc_resampled_fixed_fc"] == pytest.approx(sparc(v_r, 60.0), abs=1e-12)
