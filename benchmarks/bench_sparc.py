@@ -27,7 +27,7 @@ import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from skilllib.smoothness import ldlj_many, minimum_jerk_speed, sparc_many  # noqa: E402
+from skilllib.smoothness import SPARC_PARAMS, ldlj_many, minimum_jerk_speed, sparc_many  # noqa: E402
 
 FS = 60.0  # Hz, the Phantom's sampling rate in the experiment
 
@@ -104,7 +104,7 @@ def main() -> None:
     trials = touch_trials(1500)
     print(f"1,500 trials of 30-90 samples at {FS:g} Hz, median CPU time of {args.repeats} repeats, one core")
     print(f"{'':36s}{'time (ms)':>10s}{'per trial (us)':>16s}{'speed-up':>10s}{'max |diff|':>12s}")
-    for name, authors, ours in (("sparc", lambda v, fs: sparc(v, fs)[0], sparc_many),
+    for name, authors, ours in (("sparc", lambda v, fs: sparc(v, fs, **SPARC_PARAMS)[0], sparc_many),
                                 ("ldlj", log_dimensionless_jerk, ldlj_many)):
         c = compare(authors, ours, trials, args.repeats)
         print(f"{'monalysa ' + name + ', trial by trial':36s}{c['ref'] * 1e3:10.1f}{c['ref'] / 1500 * 1e6:16.1f}")

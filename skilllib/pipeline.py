@@ -245,7 +245,7 @@ def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int
         results["transfer"] = transfer_summary(result.transfers)
     if variants and sweep is not None:
         result.sensitivity = sparc_sensitivity(recordings, [params, *variants], k=results["k"], scaling=scaling,
-                                               random_state=random_state)
+                                               random_state=random_state, reference=(features, sweep))
         results["sparc_sensitivity"] = result.sensitivity.to_dict()
     elif variants:
         result.messages.append("no SPARC sensitivity analysis: too few selected trials to cluster")

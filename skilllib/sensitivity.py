@@ -197,21 +197,30 @@ def complete_params(setting: Mapping[str, float]) -> dict[str, float]:
 def sparc_sensitivity(recordings: Recordings | pd.DataFrame,
                       settings: Sequence[Mapping[str, float]] = DEFAULT_SETTINGS, *, k: int = pt.DEFAULT_K,
                       scaling: pt.Scaling = "raw", random_state: int = 0,
-                      k_range: tuple[int, int] = pt.K_RANGE) -> SparcSensitivity:
+                      k_range: tuple[int, int] = pt.K_RANGE,
+                      reference: tuple[pd.DataFrame, pt.SilhouetteSweep | None] | None = None) -> SparcSensitivity:
     """The clustering of the paper under each SPARC setting in ``settings`` (dicts of fc in Hz, amp_th,
     padlevel; missing keys take the book's defaults), compared with the first.
 
     Per setting: :func:`~skilllib.features.trial_features`, the selected trials, the silhouette sweep over
     ``k_range`` and the ``k``-cluster fit (k reduced to the largest the sweep reached; the sweep's own
     shrink warnings are not repeated). ``scaling`` and ``random_state`` as in
-    :func:`skilllib.prototypes.fit_prototypes`. Returns :class:`SparcSensitivity`.
+    :func:`skilllib.prototypes.fit_prototypes`. ``reference``: the first setting's features and sweep when
+    the caller has them already (the pipeline), computed with the same options; they are not recomputed.
+    Returns :class:`SparcSensitivity`.
     """
     if not settings:
         raise ValueError("no SPARC settings to compare")
     params = [complete_params(s) for s in settings]
     runs = []
     k_used = int(k)
-    for p in params:
+    for i, p in enumerate(params):
+        if i == 0 and reference is not None:
+            feats, sweep = reference
+            if sweep is not None:
+                k_used = min(k_used, int(sweep.ks[-1]))
+            runs.append((p, feats, sweep))
+            continue
         feats = trial_features(recordings, sparc_params=p)
         sel = select(feats)
         sweep = None

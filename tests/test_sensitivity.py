@@ -111,3 +111,16 @@ def test_too_few_selected_trials_give_runs_without_fits(rec):
     assert len(select(s.reference.features)) < 3
     assert all(r.fit is None for r in s.runs)
     assert s.comparison()["prototypes kept"].eq(0).all() and s.prototypes().empty
+
+
+def test_a_given_reference_is_used_not_recomputed(rec, sens, monkeypatch):
+    import skilllib.sensitivity as sensitivity_module
+
+    calls = []
+    real = sensitivity_module.trial_features
+    monkeypatch.setattr(sensitivity_module, "trial_features", lambda *a, **kw: calls.append(kw) or real(*a, **kw))
+    ref = sens.reference
+    again = sparc_sensitivity(rec, SETTINGS[:2], k=K, reference=(ref.features, ref.sweep))
+    assert len(calls) == 1 and calls[0]["sparc_params"]["fc"] == 10.0  # only the other setting is computed
+    assert again.reference.features is ref.features and again.reference.sweep is ref.sweep
+    pd.testing.assert_frame_equal(again.comparison(), sens.comparison().iloc[:1])
