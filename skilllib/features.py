@@ -8,8 +8,9 @@ For every trial of :class:`skilllib.data.Recordings`:
   3 samples, and the estimate is exactly the second-order finite difference (central inside, one-sided
   three-point at the ends, as ``numpy.gradient(edge_order=2)``). The Phantom's own velocity signal is
   noisy (field notes), so positions are differentiated. No further low-pass filter: at the device's
-  position resolution (about 0.03 mm) the speed noise at 60 Hz is about ``0.03 mm * 60 Hz / sqrt(2)`` =
-  1.3 mm/s, a thousandth of a typical peak speed; SPARC only reads the spectrum above 5 % of its maximum
+  position resolution (about 0.03 mm) the velocity noise at 60 Hz is about ``0.03 mm * 60 Hz / sqrt(2)`` =
+  1.3 mm/s per axis (the 3-D speed of pure noise has a median about 1.5 times that, about 2 mm/s), a few
+  thousandths of a typical peak speed; SPARC only reads the spectrum above 5 % of its maximum
   and below its adaptive cut-off (Balasubramanian et al. 2015), so that noise does not reach it, while a
   stronger filter would itself smooth the profile that SPARC measures. The span is fixed in seconds, not
   in samples, because a difference over one sample interval amplifies position noise in proportion to
