@@ -22,7 +22,8 @@ from .prototypes import silhouette_sweep
 
 #: Calibration targets: the paper's published aggregates and the ranges the cohort must hit.
 TARGETS = {"selected": (600, 700), "silhouette_k6": (0.30, 0.38), "centre_gap": 0.08, "participant_ratio": 1.5}
-#: :func:`seed_survey` of seeds 0-19 with the default model, as committed (command in data/README.md).
+#: :func:`seed_survey` of seeds 0..SEED with the default model, as committed (command in data/README.md); the
+#: seed rule needs exactly these rows, and tests/test_cohort.py recomputes every one of them.
 SURVEY_CSV = Path(__file__).resolve().parents[1] / "data" / "seed_survey.csv"
 
 

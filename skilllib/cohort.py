@@ -49,7 +49,7 @@ from scipy.special import ndtri
 from .data import COLUMNS, write_recordings
 
 #: The seed of data/cohort.csv: the first seed 0, 1, 2, ... whose cohort meets every target of
-#: :func:`skilllib.calibration.calibration_table` (survey of seeds 0-19: ``data/seed_survey.csv``, data/README.md).
+#: :func:`skilllib.calibration.calibration_table` (survey of seeds 0..SEED: ``data/seed_survey.csv``, data/README.md).
 SEED = 9
 
 
