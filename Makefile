@@ -11,7 +11,7 @@ export PATH := $(BIN):$(PATH)
 export MPLBACKEND := Agg
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 
-.PHONY: book test lab sync bench clean venv theme
+.PHONY: book test lab sync bench mutation clean venv theme
 
 book: venv theme
 	$(BIN)/python scripts/build_site.py
@@ -32,6 +32,13 @@ sync: venv
 bench: venv
 	$(BIN)/python benchmarks/bench_sparc.py
 
+# Mutation testing of the library's core modules (outside `make test`: about an hour on two cores).
+# mutmut's configuration is in pyproject.toml; the equivalent mutants are in tests/mutation_equivalent.toml.
+mutation: venv
+	rm -rf mutants && mkdir -p _build
+	$(BIN)/mutmut run --max-children 2 > _build/mutmut.log 2>&1 || (tail -c 2000 _build/mutmut.log; exit 1)
+	$(BIN)/python scripts/mutation_report.py
+
 venv: $(STAMP)
 $(STAMP): environment.txt pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -45,4 +52,4 @@ $(THEME_STAMP): theme/package-lock.json theme/package.json
 	touch $(THEME_STAMP)
 
 clean:
-	rm -rf _build .pytest_cache
+	rm -rf _build .pytest_cache mutants
