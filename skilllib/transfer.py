@@ -66,6 +66,12 @@ BRANCH_JUMP_RAD: float = 0.5
 #: Extra random-restart IK searches when the seeded search fails (seeded RNG, reproducible).
 IK_RESTARTS: int = 10
 
+#: Tolerance (rad) of the joint-limit checks of q0 and of every IK solution.
+JOINT_LIMIT_TOL_RAD: float = 1e-9
+
+#: Relative tolerance of the velocity-limit check: a peak up to limit * (1 + this) is within the limit.
+QD_LIMIT_RTOL: float = 1e-9
+
 
 @dataclass
 class TransferResult:
@@ -110,7 +116,7 @@ class TransferResult:
 
     @property
     def ik_max_residual_m(self) -> float:
-        """Largest IK position residual, m (failed samples included)."""
+        """Largest IK position residual, m (failed samples included where a best attempt had a finite residual)."""
         return _nan_reduce(np.max, self.ik_residual_m)
 
     @property
@@ -120,9 +126,9 @@ class TransferResult:
 
     @property
     def within_limits(self) -> bool:
-        """True when every computed joint velocity is within its limit (relative tolerance 1e-9)."""
+        """True when every computed joint velocity is within its limit (relative tolerance QD_LIMIT_RTOL)."""
         peak = self.peak_abs_qd
-        return bool(np.all(np.isfinite(peak)) and np.all(peak <= self.qd_limits * (1 + 1e-9)))
+        return bool(np.all(np.isfinite(peak)) and np.all(peak <= self.qd_limits * (1 + QD_LIMIT_RTOL)))
 
     @property
     def feasible(self) -> bool:
@@ -167,7 +173,8 @@ def time_scale_factor(peak_abs_qd: np.ndarray, qd_limits: float | np.ndarray) ->
     ratio = ratio[np.isfinite(ratio)]
     if not ratio.size:
         return float("nan")
-    return float(max(1.0, ratio.max()))
+    s = float(ratio.max())
+    return s if s > 1.0 + QD_LIMIT_RTOL else 1.0  # within the tolerance of within_limits: no stretch
 
 
 def apply_time_scale(t: np.ndarray, velocity: np.ndarray, s: float) -> tuple[np.ndarray, np.ndarray]:
@@ -271,7 +278,10 @@ def _pose_residual(ets: rtb.ETS, q: np.ndarray, target: np.ndarray) -> tuple[flo
 def _solve_ik(ets: rtb.ETS, target: np.ndarray, seed_q: np.ndarray, k: int,
               restarts: int) -> tuple[np.ndarray, float, bool]:
     """IK for one sample: a search from ``seed_q``, then ``restarts`` random restarts (RNG seeded
-    with the sample index, reproducible). Returns (q, position residual m, ok)."""
+    with the sample index, reproducible). A solution counts only when its pose residual is within
+    :data:`IK_RESIDUAL_TOL_M` and every joint within its limits (``ikine_LM`` can return a pose outside
+    them, with ``success`` False). Returns (q, position residual m, ok)."""
+    qlim = np.asarray(ets.qlim, dtype=float)
     best_q, best_res = seed_q, np.inf
     attempts = ((1, None), (restarts + 1, k)) if restarts > 0 else ((1, None),)
     for slimit, rng_seed in attempts:
@@ -281,7 +291,8 @@ def _solve_ik(ets: rtb.ETS, target: np.ndarray, seed_q: np.ndarray, k: int,
         if not np.all(np.isfinite(q)):
             continue
         dp, dr = _pose_residual(ets, q, target)
-        if dp <= IK_RESIDUAL_TOL_M and dr <= IK_RESIDUAL_TOL_M:
+        inside = np.all(q >= qlim[0] - JOINT_LIMIT_TOL_RAD) and np.all(q <= qlim[1] + JOINT_LIMIT_TOL_RAD)
+        if dp <= IK_RESIDUAL_TOL_M and dr <= IK_RESIDUAL_TOL_M and inside:
             return q, dp, True
         if dp < best_res:
             best_q, best_res = q, dp
@@ -319,7 +330,7 @@ def transfer(robot: rtb.Robot | str, t: np.ndarray, positions: np.ndarray, veloc
     if q0.shape != (n,):
         raise ValueError(f"q0 must have {n} joint angles (rad), got shape {q0.shape}")
     qlim = np.asarray(ets.qlim, dtype=float)
-    outside = np.nonzero((q0 < qlim[0] - 1e-9) | (q0 > qlim[1] + 1e-9))[0]
+    outside = np.nonzero((q0 < qlim[0] - JOINT_LIMIT_TOL_RAD) | (q0 > qlim[1] + JOINT_LIMIT_TOL_RAD))[0]
     if outside.size:
         raise ValueError(f"q0 is outside the joint limits of {robot.name} at joint(s) "
                          f"{', '.join(f'q{j + 1}' for j in outside)}")

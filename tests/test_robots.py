@@ -44,12 +44,16 @@ def test_spherical_wrist_joint_origins():
     np.testing.assert_allclose(np.linalg.norm(axes, axis=1), 1.0)
 
 
+EXPECTED_QD_LIMITS = {"simple6": [np.pi] * 6, "ur5": [np.pi] * 6, "puma560": [np.pi] * 6,  # 180 deg/s
+                      "panda": [2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61]}  # Franka datasheet
+
+
 @pytest.mark.parametrize("name", ROBOT_NAMES)
 def test_registry(name):
     robot, q0, lim = get_robot(name.upper())
     n = robot.n
     assert q0.shape == (n,) and lim.shape == (n,)
-    assert np.all(lim > 0)
+    np.testing.assert_allclose(lim, EXPECTED_QD_LIMITS[name], rtol=1e-15)  # the documented limits, rad/s
     assert np.all(q0 >= robot.qlim[0] - 1e-12) and np.all(q0 <= robot.qlim[1] + 1e-12)
     J = robot.jacob0(q0)
     assert np.linalg.cond(J) < 20  # well away from a singularity
