@@ -13,7 +13,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from skilllib.data import (
-    COLUMNS, DataFormatError, format_recordings, read_recordings, recordings_from_frame, write_recordings,
+    COLUMNS, INTERVAL_TOLERANCE, MAX_RANGE_M, MAX_TYPICAL_SPEED, MIN_SAMPLES, MIXED_FRACTION, RATE_TOLERANCE,
+    DataFormatError, format_recordings, read_recordings, recordings_from_frame, write_recordings,
 )
 
 FS = 60.0
@@ -245,11 +246,18 @@ def test_empty_position_cell_is_nan(tmp_path):
     assert status(read_recordings(p), 1, 2) == ("invalid", "x is missing (NaN) at line 47")
 
 
-def test_too_few_samples(tmp_path):
+@pytest.mark.parametrize("n", [MIN_SAMPLES - 1, MIN_SAMPLES])
+def test_min_samples_at_both_sides_of_the_edge(tmp_path, n):
+    """Exactly MIN_SAMPLES samples make a valid trial, one fewer an invalid one (catches ``<=`` for
+    ``<`` and an off-by-one in the count)."""
     def edit(df):
-        return df.drop(rows_of(df)[3:])
-    st_, reason, _ = bad_trial(tmp_path, edit)
-    assert (st_, reason) == ("invalid", "too few samples (3; need at least 5)")
+        return df.drop(rows_of(df)[n:])
+    st_, reason, rec = bad_trial(tmp_path, edit)
+    assert len(rec.trial(1, 2).t) == n
+    if n < MIN_SAMPLES:
+        assert (st_, reason) == ("invalid", f"too few samples ({n}; need at least {MIN_SAMPLES})")
+    else:
+        assert (st_, reason) == ("ok", "")
 
 
 def test_rows_not_contiguous(tmp_path):
@@ -318,3 +326,163 @@ def test_trial_order_does_not_change_validation(order):
     b = shuffled.trials.set_index(key)[["status"]].sort_index()
     pd.testing.assert_frame_equal(a, b)
     assert shuffled.fs == base.fs
+
+
+# --- every threshold at both sides of its edge -----------------------------------------------------
+#
+# These go through recordings_from_frame (no CSV rounding) at 64 Hz: the interval 1/64 s is a power of
+# two, so time stamps k/64, the file's interval and products of it with the constants are exact and a
+# value can sit exactly on a threshold. "Beyond" is then the next float (np.nextafter) or a margin of
+# 1e-9 where the library's own arithmetic is not exact.
+
+DT64 = 2.0**-6  # s: 64 Hz
+MS_STEP_LIMIT = 0.5  # s: bare literal in data._check_rates ("ref > 0.5": time stamps in milliseconds)
+
+
+def frame64(n_part=2, n_trials=10) -> pd.DataFrame:
+    return cohort_frame(n_part, n_trials, fs=1 / DT64)
+
+
+def check(df) -> tuple[str, str]:
+    """Status and reason of participant 1 trial 2 (after checking that every other trial is ok)."""
+    rec = recordings_from_frame(df)
+    others = rec.trials[~((rec.trials.participant == 1) & (rec.trials.trial == 2))]
+    assert (others.status == "ok").all(), others[others.status != "ok"]
+    return status(rec, 1, 2)
+
+
+@pytest.mark.parametrize("sign", [1, -1], ids=["longer", "shorter"])
+@pytest.mark.parametrize("beyond", [False, True], ids=["at", "beyond"])
+def test_interval_tolerance_at_both_sides_of_the_edge(sign, beyond):
+    """One interval of (1 +- INTERVAL_TOLERANCE) x the file's is jitter (trial ok); the next float
+    further out is irregular sampling. Catches ``>=`` for ``>``, a dropped abs() (the shorter
+    interval) and a tolerance other than the constant."""
+    df = frame64()
+    r = rows_of(df)
+    t = np.arange(len(r)) * DT64
+    t20 = t[19] + DT64 * (1 + sign * INTERVAL_TOLERANCE)
+    if beyond:
+        t20 = np.nextafter(t20, sign * np.inf)
+    t[20:] = t20 + np.arange(len(r) - 20) * DT64
+    df.loc[r, "t"] = t
+    assert (np.diff(t)[19] / DT64 - 1) * sign == INTERVAL_TOLERANCE or beyond  # the edge is exact
+    st_, reason = check(df)
+    if beyond:
+        assert st_ == "invalid" and reason.startswith("irregular sampling: interval of") and "row 60" in reason
+    else:
+        assert (st_, reason) == ("ok", "")
+
+
+@pytest.mark.parametrize("sign", [1, -1], ids=["slower", "faster"])
+@pytest.mark.parametrize("beyond", [False, True], ids=["inside", "outside"])
+def test_rate_tolerance_at_both_sides_of_the_edge(sign, beyond):
+    """A trial whose interval is (1 +- RATE_TOLERANCE) x the file's, 1e-9 inside, is kept; 1e-9
+    outside it is 'sampled at another rate'. Catches a tolerance other than the constant and a
+    one-sided (no abs) comparison."""
+    df = frame64()
+    r = rows_of(df)
+    ratio = 1 + sign * RATE_TOLERANCE * (1 + (1e-9 if beyond else -1e-9))
+    df.loc[r, "t"] = np.arange(len(r)) * DT64 * ratio
+    st_, reason = check(df)
+    if beyond:
+        assert st_ == "invalid" and reason.startswith(f"sampled at {ratio**-1 / DT64:.1f} Hz, the file at 64.0 Hz")
+    else:
+        assert (st_, reason) == ("ok", "")
+
+
+@pytest.mark.parametrize("extra", [0, 1], ids=["at", "beyond"])
+def test_mixed_fraction_at_both_sides_of_the_edge(extra):
+    """With N trials, MIXED_FRACTION x N trials at half the rate are single off-rate trials (marked
+    invalid); one more and the file mixes rates. Catches ``>=`` for ``>`` and a fraction taken over
+    the on-rate trials only (2 > 0.05 x 38 would raise at the edge)."""
+    n = round(2 / MIXED_FRACTION)
+    limit = 2
+    assert MIXED_FRACTION * n == limit  # the edge is an exact count
+    df = cohort_frame(2, n // 2, fs=1 / DT64)
+    slow = list(range(1, limit + extra + 1))  # trials 1.. of participant 1 at 32 Hz
+    for tr in slow:
+        r = rows_of(df, 1, tr)
+        df.loc[r, "t"] = np.arange(len(r)) * 2 * DT64
+    if extra:
+        with pytest.raises(DataFormatError, match=rf"mixed sampling rates \({n - limit - 1} trials at 64 Hz, "
+                                                  rf"{limit + 1} trials at 32 Hz\)"):
+            recordings_from_frame(df)
+        return
+    rec = recordings_from_frame(df)
+    assert rec.fs == 64.0
+    bad = rec.trials[rec.trials.status != "ok"]
+    assert bad.trial.tolist() == slow and (bad.participant == 1).all()
+    assert bad.reason.str.startswith("sampled at 32.0 Hz, the file at 64.0 Hz").all()
+
+
+@pytest.mark.parametrize("beyond", [False, True], ids=["at", "beyond"])
+def test_millisecond_detection_at_both_sides_of_the_edge(beyond):
+    """A median step of exactly 0.5 s (2 Hz) is read as seconds; a step 2**-20 s longer raises
+    'milliseconds'. The 0.5 s is a bare literal in data._check_rates (should be a named constant)."""
+    step = MS_STEP_LIMIT + (2.0**-20 if beyond else 0.0)  # k * step is exact for k < 64
+    df = cohort_frame(2, 3)
+    for g in df.groupby(["participant", "trial"]).groups.values():
+        df.loc[g, "t"] = np.arange(len(g)) * step
+    if beyond:
+        with pytest.raises(DataFormatError, match=r"milliseconds.*divide t by 1000"):
+            recordings_from_frame(df)
+    else:
+        rec = recordings_from_frame(df)
+        assert (rec.trials.status == "ok").all() and rec.fs == 1 / MS_STEP_LIMIT
+
+
+@pytest.mark.parametrize("beyond", [False, True], ids=["at", "beyond"])
+def test_single_trial_span_at_both_sides_of_max_range(beyond):
+    """A trial spanning exactly MAX_RANGE_M is kept; the next float is 'positions span' (catches
+    ``>=`` for ``>`` and another limit than the constant)."""
+    span = np.nextafter(MAX_RANGE_M, np.inf) if beyond else MAX_RANGE_M
+    df = frame64()
+    r = rows_of(df)
+    df.loc[r, "x"] = 0.0
+    df.loc[r[12], "x"] = span
+    st_, reason = check(df)
+    if beyond:
+        assert st_ == "invalid" and reason.startswith(f"positions span {span:.3g} m (more than {MAX_RANGE_M:g} m)")
+    else:
+        assert (st_, reason) == ("ok", "")
+
+
+def units_frame(y_of_trial) -> pd.DataFrame:
+    """2 x 3 trials of 40 samples at 64 Hz, x = z = 0 and y = ``y_of_trial(n)``."""
+    parts = []
+    for p in (1, 2):
+        for tr in (1, 2, 3):
+            y = y_of_trial(40)
+            parts.append(pd.DataFrame({"participant": p, "trial": tr, "t": np.arange(40) * DT64, "x": 0.0,
+                                       "y": y, "z": 0.0, "contact": (np.arange(40) >= 30).astype(int)}))
+    return pd.concat(parts, ignore_index=True)
+
+
+@pytest.mark.parametrize("beyond", [False, True], ids=["at", "beyond"])
+def test_file_span_at_both_sides_of_max_range(beyond):
+    """Trials that all span exactly MAX_RANGE_M (at 3 m/s, a plausible speed) are metres; the next
+    float raises 'millimetres or centimetres' (catches ``>=`` for ``>`` in the file-level check)."""
+    span = np.nextafter(MAX_RANGE_M, np.inf) if beyond else MAX_RANGE_M
+    df = units_frame(lambda n: np.minimum(np.linspace(0.0, span, n), span))
+    if beyond:
+        with pytest.raises(DataFormatError, match="look like millimetres or centimetres"):
+            recordings_from_frame(df)
+    else:
+        assert (recordings_from_frame(df).trials.status == "ok").all()
+
+
+@pytest.mark.parametrize("beyond", [False, True], ids=["at", "beyond"])
+def test_typical_speed_at_both_sides_of_max_typical_speed(beyond):
+    """Trials moving back and forth by MAX_TYPICAL_SPEED x dt each sample (speed exactly
+    MAX_TYPICAL_SPEED, span well under MAX_RANGE_M) are metres; a step one float longer raises.
+    Catches ``>=`` for ``>`` and another limit than the constant."""
+    step = MAX_TYPICAL_SPEED * DT64  # exact: DT64 is a power of two
+    if beyond:
+        step = np.nextafter(step, np.inf)
+    assert step < MAX_RANGE_M
+    df = units_frame(lambda n: np.where(np.arange(n) % 2 == 1, step, 0.0))
+    if beyond:
+        with pytest.raises(DataFormatError, match="look like millimetres or centimetres"):
+            recordings_from_frame(df)
+    else:
+        assert (recordings_from_frame(df).trials.status == "ok").all()

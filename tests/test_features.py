@@ -7,11 +7,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from skilllib import smoothness
+from monalysa.quality.smoothness import log_dimensionless_jerk as ldlj_authors
+from monalysa.quality.smoothness import sparc as sparc_authors
+
+from skilllib import features
 from skilllib.data import recordings_from_frame
 from skilllib.features import (
-    CONTACT_WINDOW, FEATURE_COLUMNS, ONSET_SPEED, SPARC_PARAMS, participant_summary, segment, segment_arrays,
-    select, status_counts, trial_features, velocity, diff_window,
+    CONTACT_WINDOW, DIFF_SPAN_S, FEATURE_COLUMNS, MIN_SEGMENT_SAMPLES, ONSET_SPEED, SPARC_PARAMS,
+    participant_summary, segment, segment_arrays, select, status_counts, trial_features, velocity, diff_window,
 )
 
 FS = 60.0
@@ -61,11 +64,45 @@ def test_velocity_is_exact_for_quadratic_motion_at_any_rate(fs):
     np.testing.assert_allclose(velocity(pos, fs)[:, 1], -4.0 * t, atol=1e-9)
 
 
+def nearest_odd_window(fs: float) -> int:
+    """The odd window (at least 3 samples) whose span (w - 1) / fs is nearest DIFF_SPAN_S, by search."""
+    ws = np.arange(1, 2001, 2)
+    return max(3, int(ws[np.argmin(np.abs((ws - 1) / fs - DIFF_SPAN_S))]))
+
+
+def window_edges() -> list[float]:
+    """Rates at which the nearest odd window steps from 2k - 1 to 2k + 1 samples: (2k - 1) / DIFF_SPAN_S
+    (k = 1: 30 Hz, where the minimum of 3 samples keeps it at 3)."""
+    return [(2 * k - 1) / DIFF_SPAN_S for k in (1, 2, 3, 4, 17)]
+
+
 def test_differentiating_window_spans_the_same_time_at_every_rate():
-    assert diff_window(60.0) == 3
-    for fs in (120.0, 250.0, 1000.0):
-        w = diff_window(fs)
-        assert w % 2 == 1 and abs((w - 1) / fs - 2 / 60) <= 1 / fs
+    assert diff_window(60.0) == 3  # the experiment's rate: the three-point difference
+    for fs in (20.0, 60.0, 120.0, 250.0, 1000.0):
+        assert diff_window(fs) == nearest_odd_window(fs), fs
+
+
+@pytest.mark.parametrize("edge", window_edges())
+def test_differentiating_window_at_both_sides_of_each_step(edge):
+    """Just below a step the window is the smaller odd size, just above the next one (a minimum of 3
+    at 30 Hz). Catches floor/ceil for round, a span other than DIFF_SPAN_S, a dropped minimum."""
+    below, above = diff_window(edge * (1 - 1e-6)), diff_window(edge * (1 + 1e-6))
+    assert (below, above) == (nearest_odd_window(edge * (1 - 1e-6)), nearest_odd_window(edge * (1 + 1e-6)))
+    assert above == (3 if edge * DIFF_SPAN_S < 2 else below + 2)
+
+
+@pytest.mark.parametrize("edge", window_edges()[1:3])
+@pytest.mark.parametrize("side", [1 - 1e-6, 1 + 1e-6], ids=["below", "above"])
+def test_velocity_uses_the_window_of_its_rate(edge, side):
+    """The error of a quadratic Savitzky-Golay derivative of t**3 over 2m + 1 samples is
+    h**2 sum(k**4) / sum(k**2) (h = 1/fs, k = -m..m): it tells the window velocity() really used.
+    Catches velocity() ignoring diff_window (a fixed three-point difference)."""
+    fs = edge * side
+    t = np.arange(60) / fs
+    pos = np.column_stack([0 * t, t**3, 0 * t])
+    err = velocity(pos, fs)[30, 1] - 3 * t[30] ** 2
+    k = np.arange(-(nearest_odd_window(fs) // 2), nearest_odd_window(fs) // 2 + 1)
+    assert err == pytest.approx(np.sum(k**4) / np.sum(k**2) / fs**2, rel=1e-6)
 
 
 def test_speed_noise_does_not_grow_with_the_sampling_rate():
@@ -150,25 +187,64 @@ def test_every_trial_is_kept_with_status_and_reason():
     assert len(select(f)) == 1 and (select(f).status == "selected").all()
 
 
-def test_window_edges_are_inclusive():
+def test_window_edges_are_inclusive_and_the_next_float_out_is_excluded():
+    """A contact speed exactly on an edge is selected, the window one float narrower excludes it
+    (catches ``<=``/``>=`` for ``<``/``>`` in the window test)."""
+    df = frame_of({(1, 1): approach()})
+    v = trial_features(df).contact_speed[0]
+    lo, hi = CONTACT_WINDOW
+    assert trial_features(df, window=(v, hi)).status[0] == "selected"
+    assert trial_features(df, window=(lo, v)).status[0] == "selected"
+    out = trial_features(df, window=(np.nextafter(v, np.inf), hi))
+    assert out.status[0] == "excluded" and out.reason[0].startswith(f"contact speed {v:.3f} m/s below")
+    out = trial_features(df, window=(lo, np.nextafter(v, -np.inf)))
+    assert out.status[0] == "excluded" and out.reason[0].startswith(f"contact speed {v:.3f} m/s above")
+
+
+def test_paper_and_documented_constants():
+    """The paper's selection (0.3-0.7 m/s) and onset threshold (0.05 m/s), and the values the module
+    docstring and chapter 2 state (a 2/60 s differentiating span, segments of at least 5 samples):
+    the threshold tests use the constants, so only this catches a changed value."""
+    assert CONTACT_WINDOW == (0.3, 0.7) and ONSET_SPEED == 0.05
+    assert DIFF_SPAN_S == 2 / 60 and MIN_SEGMENT_SAMPLES == 5
+
+
+@pytest.mark.parametrize("edge", [0, 1], ids=["lower", "upper"])
+@pytest.mark.parametrize("inside", [True, False], ids=["inside", "outside"])
+def test_default_window_is_contact_window(edge, inside):
+    """With the default window, a trial whose contact speed lies 1e-6 inside an edge of CONTACT_WINDOW
+    is selected and 1e-6 outside excluded: trial_features selects with the constant (positions scaled
+    about the start scale the speed)."""
     t, pos, c = approach()
-    f = trial_features(frame_of({(1, 1): (t, pos, c)}))
-    v = f.contact_speed[0]
-    assert trial_features(frame_of({(1, 1): (t, pos, c)}), window=(v, 0.9)).status[0] == "selected"
-    assert trial_features(frame_of({(1, 1): (t, pos, c)}), window=(0.1, v)).status[0] == "selected"
-    assert CONTACT_WINDOW == (0.3, 0.7)
+    v = trial_features(frame_of({(1, 1): (t, pos, c)})).contact_speed[0]
+    inward = 1e-6 if edge == 0 else -1e-6
+    target = CONTACT_WINDOW[edge] * (1 + (inward if inside else -inward))
+    f = trial_features(frame_of({(1, 1): (t, pos[0] + (pos - pos[0]) * (target / v), c)}))
+    assert f.contact_speed[0] == pytest.approx(target, rel=1e-9)
+    assert f.status[0] == ("selected" if inside else "excluded")
 
 
-def test_features_match_the_smoothness_module_on_the_segment():
+def test_features_match_an_independent_computation():
+    """Every feature against values computed without skilllib: the speed by numpy's second-order
+    difference over the samples before contact, onset by the paper's rule, SPARC and LDLJ by the
+    authors' code (monalysa). ``segment`` gives the same segment."""
     t, pos, c = approach()
     rec = recordings_from_frame(frame_of({(3, 7): (t, pos, c)}))
     f = trial_features(rec).iloc[0]
+    ci = int(np.flatnonzero(c)[0])
+    speed = np.linalg.norm(np.gradient(pos[:ci], 1 / FS, axis=0, edge_order=2), axis=1)
+    o = int(np.flatnonzero(speed > ONSET_SPEED)[0])
+    v = speed[o:]
+    assert (f.n, f.t_onset, f.t_contact) == (ci - o, t[o], t[ci])
+    assert f.pv == pytest.approx(v.max(), rel=1e-9) and f.contact_speed == pytest.approx(v[-1], rel=1e-9)
+    assert f.duration == pytest.approx((ci - o) / FS, rel=1e-9)
+    p = SPARC_PARAMS
+    assert f.sparc == pytest.approx(sparc_authors(v, FS, padlevel=p["padlevel"], fc=p["fc"],
+                                                  amp_th=p["amp_th"])[0], abs=1e-9)
+    assert f.ldlj == pytest.approx(ldlj_authors(v, FS), abs=1e-9)
     seg = segment(rec, 3, 7)
-    assert f.pv == seg.speed.max() and f.contact_speed == seg.speed[-1]
-    assert f.sparc == pytest.approx(smoothness.sparc(seg.speed, FS, **SPARC_PARAMS), abs=1e-9)
-    assert f.ldlj == pytest.approx(smoothness.ldlj(seg.speed, FS), abs=1e-9)
-    assert f.t_onset == t[seg.onset] and f.t_contact == t[seg.contact] and f.n == len(seg.speed)
-    assert f.duration == pytest.approx(f.t_contact - f.t_onset)
+    assert (seg.onset, seg.contact) == (o, ci)
+    np.testing.assert_allclose(seg.speed, v, rtol=1e-9)
 
 
 def test_peak_speed_of_a_minimum_jerk_approach():
@@ -209,3 +285,77 @@ def test_features_invariant_to_translation_rotation_and_time_origin(shift, angle
     for col in ["pv", "contact_speed", "duration", "sparc", "ldlj"]:
         assert b[col] == pytest.approx(a[col], rel=1e-6, abs=1e-9), col
     assert b.t_onset - a.t_onset == pytest.approx(t0, abs=1e-6)
+
+
+# --- segmentation thresholds at both sides of their edge -------------------------------------------
+
+def ramp(n=30, start=10, u=0.5, fs=FS):
+    """Rest at y = 0 up to sample ``start`` - 1, then y falls at ``u`` m/s: the second-order difference
+    gives speed 0 before ``start`` - 1, u / 2 at ``start`` - 1 (central difference across the start),
+    so with u / 2 > ONSET_SPEED the onset is sample ``start`` - 1."""
+    t = np.arange(n) / fs
+    y = -np.maximum(np.arange(n) - (start - 1), 0) * u / fs
+    return t, np.column_stack([np.zeros(n), 0.2 + y, np.zeros(n)])
+
+
+@pytest.mark.parametrize("n", [MIN_SEGMENT_SAMPLES - 1, MIN_SEGMENT_SAMPLES])
+def test_min_segment_samples_at_both_sides_of_the_edge(n):
+    """Exactly MIN_SEGMENT_SAMPLES samples from onset to contact is a segment, one fewer 'too short',
+    in segment_arrays and trial_features (their defaults). Catches ``<=`` for ``<``, an off-by-one in
+    n = contact - onset and a default other than the constant."""
+    t, pos = ramp()
+    onset = 9
+    contact = np.arange(len(t)) >= onset + n
+    seg = segment_arrays(t, pos, contact, FS)
+    f = trial_features(frame_of({(1, 1): (t, pos, contact)})).iloc[0]
+    if n < MIN_SEGMENT_SAMPLES:
+        reason = f"too short: {n} samples from onset to contact (need at least {MIN_SEGMENT_SAMPLES})"
+        assert seg == reason and (f.status, f.reason) == ("invalid", reason)
+    else:
+        assert (seg.onset, seg.contact, len(seg.speed)) == (onset, onset + n, n)
+        assert f.status != "invalid" and f.n == n and f.t_onset == t[onset]
+
+
+def test_onset_speed_exactly_at_the_threshold_does_not_start_the_movement(monkeypatch):
+    """Onset is the first speed strictly above ONSET_SPEED: speeds equal to it (here at the first
+    sample, too) neither start the movement nor count as 'no rest before onset'. velocity() is replaced
+    by a profile of exact speeds, since a derivative never lands exactly on 0.05. Catches ``>=``."""
+    above = np.nextafter(ONSET_SPEED, np.inf)
+    speeds = np.array([ONSET_SPEED, 0.0, ONSET_SPEED, ONSET_SPEED, above, 0.2, 0.4, 0.5, 0.5, 0.45, 0.4, 0.4])
+    monkeypatch.setattr(features, "velocity", lambda p, fs: np.column_stack([0 * speeds, -speeds, 0 * speeds]))
+    n = len(speeds)
+    contact = np.arange(n + 3) >= n
+    seg = segment_arrays(np.arange(n + 3) / FS, np.zeros((n + 3, 3)), contact, FS)
+    assert not isinstance(seg, str), seg
+    assert seg.onset == 4 and seg.speed[0] == above
+    all_at = segment_arrays(np.arange(n + 3) / FS, np.zeros((n + 3, 3)), contact, FS,
+                            onset_speed=0.5)  # the maximum: nothing strictly above it
+    assert all_at.startswith("no onset")
+
+
+@pytest.mark.parametrize("inside", [False, True], ids=["below", "above"])
+def test_onset_speed_with_the_real_derivative(inside):
+    """End to end with the real velocity(): a speed 1e-6 below ONSET_SPEED at sample 9 leaves the onset
+    at sample 10, 1e-6 above starts it at 9 (trial_features's default is the constant)."""
+    t, pos = ramp()
+    pos[10:, 1] += 0.5 / FS  # the ramp now starts at sample 10 ...
+    a = ONSET_SPEED * (1 + (1e-6 if inside else -1e-6)) * 2 / FS  # ... after a first step of a
+    pos[10:, 1] -= a  # central difference at sample 9: a * FS / 2
+    contact = np.arange(len(t)) >= 25
+    f = trial_features(frame_of({(1, 1): (t, pos, contact)})).iloc[0]
+    assert f.t_onset == t[9 if inside else 10]
+
+
+@pytest.mark.parametrize("first_contact, reason", [
+    (0, "in contact from sample 1: no approach recorded before contact"),
+    (1, "in contact from sample 2: no approach recorded before contact"),
+    (2, "no onset: speed stays below"),  # past the rule: two samples can be differentiated
+])
+def test_contact_from_the_first_or_second_sample(first_contact, reason):
+    """Contact at sample index 0 or 1 leaves fewer than 2 samples to differentiate; at index 2 the
+    approach is differentiated (at rest here: no onset). The 2 is a bare literal in segment_arrays.
+    Catches ``c < 3`` (index 2 refused) and ``c < 1`` (velocity of one sample raises)."""
+    n = 20
+    contact = np.arange(n) >= first_contact
+    out = segment_arrays(np.arange(n) / FS, np.zeros((n, 3)), contact, FS)
+    assert isinstance(out, str) and out.startswith(reason), out

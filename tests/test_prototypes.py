@@ -10,7 +10,9 @@ import pandas as pd
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from sklearn.metrics import silhouette_score
+from sklearn.cluster import KMeans
+from sklearn.metrics import adjusted_rand_score, silhouette_score
+from threadpoolctl import threadpool_limits
 
 from skilllib.prototypes import (
     PrototypeResult, bootstrap_stability, failing_clusters, feature_frame, fit_prototypes, is_valid,
@@ -250,25 +252,50 @@ def test_ari_is_one_on_separated_blobs(data):
 
 
 def test_ari_below_one_when_k_is_wrong():
+    """Each bootstrap ARI equals one recomputed with scikit-learn alone by the documented procedure:
+    resample with default_rng(random_state), refit K-means (seeded from the same generator), assign
+    every trial to the nearest refitted centre, compare with the full-data fit."""
     df, _ = blobs(n_per=30, seed=4, sd=(0.15, 0.4))  # blobs overlap; k = 9 splits them arbitrarily
     b = bootstrap_stability(df, 9, n_boot=10, random_state=1)
-    assert b.shape == (10,) and b.min() < 0.95 and b.max() <= 1.0
-    np.testing.assert_array_equal(b, bootstrap_stability(df, 9, n_boot=10, random_state=1))
+    x = df[["pv", "sparc"]].to_numpy(float)
+    rng = np.random.default_rng(1)
+    expected = []
+    with threadpool_limits(1):  # a few hundred points: threads only cost time
+        ref = KMeans(9, n_init=10, random_state=1).fit(x).labels_
+        for _ in range(10):
+            idx = rng.integers(0, len(x), len(x))
+            km = KMeans(9, n_init=10, random_state=int(rng.integers(2**31 - 1))).fit(x[idx])
+            expected.append(adjusted_rand_score(ref, km.predict(x)))
+    assert b.shape == (10,)
+    np.testing.assert_allclose(b, expected, rtol=0, atol=1e-12)
+    assert b.min() < 0.95  # k = 9 on overlapping blobs is not stable
 
 
 # --- results.json -----------------------------------------------------------------------------
 
 def test_results_section_json(data):
-    df, _ = data
+    """Sizes, centres, prototypes and average silhouette against the known blobs (sizes 25, 22, .., 10,
+    so that a permutation of the clusters shows), computed without skilllib."""
+    df, truth = data
+    keep = np.sort(np.concatenate([np.flatnonzero(truth == c)[: 25 - 3 * c] for c in range(6)]))
+    df, truth = df.iloc[keep].reset_index(drop=True), truth[keep]
     sw = silhouette_sweep(df, 2, 8)
     out = results_section(sw, sw.results[6])
     text = json.dumps(out, allow_nan=False)
     back = json.loads(text)
     assert back["k"] == 6 and list(back["silhouette"]) == [str(k) for k in range(2, 9)]
     cl = back["clusters"]
-    assert [c["id"] for c in cl] == list(range(6)) and sum(c["size"] for c in cl) == len(df)
-    assert [c["centre"]["pv"] for c in cl] == sorted(c["centre"]["pv"] for c in cl)
-    assert set(cl[0]["prototype"]) == {"participant", "trial", "pv", "sparc"}
+    assert [c["id"] for c in cl] == list(range(6))
+    assert [c["size"] for c in cl] == [25, 22, 19, 16, 13, 10]  # the blobs, numbered in PV order
+    x = df[["pv", "sparc"]].to_numpy(float)
+    means = [x[truth == c].mean(axis=0) for c in range(6)]
+    np.testing.assert_allclose([[c["centre"]["pv"], c["centre"]["sparc"]] for c in cl], means, rtol=1e-12)
+    assert back["average_silhouette"] == pytest.approx(silhouette_score(x, truth), abs=1e-12)
+    for c in cl:  # the prototype is the blob member nearest the blob's mean
+        members = np.flatnonzero(truth == c["id"])
+        row = members[np.argmin(np.linalg.norm(x[members] - means[c["id"]], axis=1))]
+        assert c["prototype"] == {"participant": df.at[row, "participant"], "trial": int(df.at[row, "trial"]),
+                                  "pv": x[row, 0], "sparc": x[row, 1]}
     assert type(cl[0]["prototype"]["trial"]) is int and type(cl[0]["prototype"]["participant"]) is str
 
 

@@ -260,10 +260,22 @@ def test_amplitude_invariance(v, scale, j):
 @given(v=st.one_of(speeds, signed), fs=any_fs, fc=st.floats(0.5, 50), amp_th=st.floats(0.001, 0.9),
        padlevel=st.integers(0, 7))
 def test_sparc_is_at_most_minus_one_or_zero_for_a_one_bin_band(v, fs, fc, amp_th, padlevel):
-    try:
-        s = sparc_spectrum(v, fs, fc, amp_th, padlevel)
-    except ValueError:
+    """Inputs outside SPARC's domain (fc above Nyquist, a profile at rest: both tested in
+    test_bad_*) are assumed away, not silently passed; a signed profile whose spectrum stays below
+    amp_th up to fc must raise. The band runs from the first to the last bin up to fc at or above
+    amp_th (numpy's FFT here); a band of one bin has SPARC 0, any longer one at most -1."""
+    assume(fc <= fs / 2 and np.any(v))
+    n_fft = nfft(v.size, padlevel)
+    Mf = np.abs(np.fft.fft(v, n_fft))
+    Mf = Mf[np.arange(n_fft) * (fs / n_fft) <= fc] / Mf.max()  # the bins up to fc, normalised
+    assume(np.all(np.abs(Mf - amp_th) > 1e-9 * amp_th))  # no bin on the threshold: unambiguous
+    if not np.any(Mf >= amp_th):
+        with pytest.raises(ValueError, match="no spectral magnitude at or above amp_th"):
+            sparc_spectrum(v, fs, fc, amp_th, padlevel)
         return
+    s = sparc_spectrum(v, fs, fc, amp_th, padlevel)
+    above = np.flatnonzero(Mf >= amp_th)
+    assert s.f_sel.size == above[-1] - above[0] + 1  # the band: first to last bin at or above amp_th
     if s.f_sel.size == 1:
         assert s.sparc == 0.0  # empty arc, as the authors' code
     else:
@@ -363,10 +375,13 @@ def test_submovements_drifting_apart_lower_sparc():
 def test_spectrum_companion():
     v = minimum_jerk_speed(np.arange(0, 0.8, 1 / 60), 0, 1.0)  # cut at contact, 80 % of the way
     s = sparc_spectrum(v, 60.0)
-    assert s.sparc == sparc(v, 60.0)
-    assert s.nfft == nfft(v.size) == s.f.size == s.Mf.size
-    assert s.Mf.max() == 1.0 and s.f_sel[0] == 0.0 and s.f_sel[-1] == s.cutoff <= s.fc
-    assert s.Mf_sel[-1] >= s.amp_th
+    assert abs(s.sparc - authors(v, 60.0)) < TOL and s.sparc == sparc(v, 60.0)
+    assert s.nfft == 2 ** (int(np.ceil(np.log2(v.size))) + 4) == s.f.size == s.Mf.size  # padlevel 4
+    np.testing.assert_allclose(s.f, np.arange(s.nfft) * 60.0 / s.nfft, rtol=1e-12)
+    Mf = np.abs(np.fft.fft(v, s.nfft))
+    np.testing.assert_allclose(s.Mf, Mf / Mf.max(), rtol=0, atol=1e-12)
+    assert s.f_sel[0] == 0.0 and s.cutoff == pytest.approx(authors_band_end(v, 60.0), abs=1e-12)
+    assert s.cutoff <= s.fc and s.Mf_sel[-1] >= s.amp_th
     beyond = (s.f > s.cutoff) & (s.f <= s.fc)
     assert np.all(s.Mf[beyond] < s.amp_th)
     assert np.array_equal(s.Mf_sel, s.Mf[: s.Mf_sel.size])
