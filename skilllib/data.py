@@ -40,6 +40,8 @@ MAX_TYPICAL_SPEED = 20.0  #: m/s; a typical (median over trials of the 95th perc
 RATE_TOLERANCE = 0.10  #: a trial's median interval may differ this much (relative) from the file's
 INTERVAL_TOLERANCE = 0.5  #: any single interval outside (1 +- this) x the file's is irregular sampling
 MIXED_FRACTION = 0.05  #: more trials than this fraction at another rate: the file mixes rates (error)
+MIN_RATE_HZ = 10.0  #: a sampling rate below this, read from t in s, means t is in another unit (error)
+MAX_RATE_HZ = 100_000.0  #: the fastest rate a unit suggestion considers plausible (Hz)
 T_DECIMALS, POS_DECIMALS = 4, 5  #: writer's rounding: 0.1 ms and 0.01 mm
 
 
@@ -249,15 +251,25 @@ def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, _is_
     return Recordings(frame=frame, trials=trials, fs=1.0 / dt if dt > 0 else np.nan, source=source, _rows=rows)
 
 
+def _time_unit_advice(step: float) -> str:
+    """What a median time step too long for seconds (``step`` in the file's unit) says about the unit."""
+    head = (f"median time step {step:g} between samples: {1 / step:.3g} Hz if t were in seconds, below "
+            f"{MIN_RATE_HZ:g} Hz")
+    for unit, factor in (("milliseconds", 1e3), ("microseconds", 1e6)):
+        if MIN_RATE_HZ <= factor / step <= MAX_RATE_HZ:
+            return (f"time stamps look like {unit} ({head}; {factor / step:.4g} Hz in {unit}); t must be in "
+                    f"seconds: divide t by {factor:.0f}")
+    return f"time stamps are not in seconds ({head}); t must be in seconds"
+
+
 def _check_rates(source, keys, groups, med_dt, mean_dt, t_all, reasons, loc) -> float:
     """Time units and mixed rates (errors), single off-rate or irregular trials (invalid); returns the
     file's sampling interval in s: the median over on-rate trials of each trial's mean interval (robust
     to time stamps rounded to 0.1 ms, unlike the median interval used to find off-rate trials)."""
     ok = ~np.isnan(med_dt)
     ref = float(np.median(med_dt[ok]))
-    if ref > 0.5:
-        raise DataFormatError(f"{source}: time stamps look like milliseconds (median step {ref:g} between "
-                              f"samples); t must be in seconds: divide t by 1000")
+    if ref > 1 / MIN_RATE_HZ:
+        raise DataFormatError(f"{source}: {_time_unit_advice(ref)}")
     off = np.abs(med_dt / ref - 1) > RATE_TOLERANCE  # NaN compares False
     if off.sum() > MIXED_FRACTION * ok.sum():
         rates = pd.Series(np.round(1 / mean_dt[ok], 1)).value_counts()

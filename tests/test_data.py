@@ -13,7 +13,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from skilllib.data import (
-    COLUMNS, INTERVAL_TOLERANCE, MAX_RANGE_M, MAX_TYPICAL_SPEED, MIN_SAMPLES, MIXED_FRACTION, RATE_TOLERANCE,
+    COLUMNS, INTERVAL_TOLERANCE, MAX_RANGE_M, MAX_TYPICAL_SPEED, MIN_RATE_HZ, MIN_SAMPLES, MIXED_FRACTION, RATE_TOLERANCE,
     DataFormatError, format_recordings, read_recordings, recordings_from_frame, write_recordings,
 )
 
@@ -336,7 +336,6 @@ def test_trial_order_does_not_change_validation(order):
 # 1e-9 where the library's own arithmetic is not exact.
 
 DT64 = 2.0**-6  # s: 64 Hz
-MS_STEP_LIMIT = 0.5  # s: bare literal in data._check_rates ("ref > 0.5": time stamps in milliseconds)
 
 
 def frame64(n_part=2, n_trials=10) -> pd.DataFrame:
@@ -415,20 +414,32 @@ def test_mixed_fraction_at_both_sides_of_the_edge(extra):
     assert bad.reason.str.startswith("sampled at 32.0 Hz, the file at 64.0 Hz").all()
 
 
-@pytest.mark.parametrize("beyond", [False, True], ids=["at", "beyond"])
-def test_millisecond_detection_at_both_sides_of_the_edge(beyond):
-    """A median step of exactly 0.5 s (2 Hz) is read as seconds; a step 2**-20 s longer raises
-    'milliseconds'. The 0.5 s is a bare literal in data._check_rates (should be a named constant)."""
-    step = MS_STEP_LIMIT + (2.0**-20 if beyond else 0.0)  # k * step is exact for k < 64
+@pytest.mark.parametrize("beyond", [False, True], ids=["inside", "beyond"])
+def test_slowest_rate_at_both_sides_of_the_edge(beyond):
+    """A median step just under 1 / MIN_RATE_HZ s is read as seconds; just over it raises (catches another
+    limit than the constant and a reversed comparison)."""
+    step = (1 + (1e-6 if beyond else -1e-6)) / MIN_RATE_HZ
     df = cohort_frame(2, 3)
     for g in df.groupby(["participant", "trial"]).groups.values():
         df.loc[g, "t"] = np.arange(len(g)) * step
     if beyond:
-        with pytest.raises(DataFormatError, match=r"milliseconds.*divide t by 1000"):
+        with pytest.raises(DataFormatError, match=r"below 10 Hz.*t must be in seconds"):
             recordings_from_frame(df)
     else:
         rec = recordings_from_frame(df)
-        assert (rec.trials.status == "ok").all() and rec.fs == 1 / MS_STEP_LIMIT
+        assert (rec.trials.status == "ok").all() and rec.fs == pytest.approx(1 / step)
+
+
+@pytest.mark.parametrize("fs, unit, factor", [(60.0, "milliseconds", 1e3), (2000.0, "milliseconds", 1e3),
+                                              (5000.0, "milliseconds", 1e3), (60.0, "microseconds", 1e6),
+                                              (250.0, "microseconds", 1e6)])
+def test_the_unit_of_the_time_stamps_is_named(fs, unit, factor):
+    """Time in ms or us is recognised at any rate of motion capture (2 kHz in ms has steps of 0.5, which
+    an earlier rule read as a 2 Hz file in seconds), and the advice names the unit and its factor."""
+    df = cohort_frame(2, 3, fs=fs)
+    df["t"] *= factor
+    with pytest.raises(DataFormatError, match=rf"look like {unit} .*{fs:.4g} Hz in {unit}.*divide t by {factor:.0f}$"):
+        recordings_from_frame(df)
 
 
 @pytest.mark.parametrize("beyond", [False, True], ids=["at", "beyond"])
