@@ -50,6 +50,8 @@ ONSET_SPEED = 0.05  #: m/s, movement onset threshold (the paper)
 CONTACT_WINDOW = (0.3, 0.7)  #: m/s, selected contact speeds, inclusive (the paper)
 MIN_SEGMENT_SAMPLES = 5  #: fewer samples from onset to contact: too short to analyse
 DIFF_SPAN_S = 2 / 60  #: s, span of the differentiating window (3 samples at the experiment's 60 Hz)
+MIN_DIFF_WINDOW = 3  #: samples: the smallest differentiating window (a quadratic needs three points)
+MIN_APPROACH_SAMPLES = 2  #: fewer samples before contact leave nothing to differentiate
 #: SPARC settings of the SPARC chapter (Balasubramanian et al. 2015 defaults): fc in Hz, amp_th, padlevel
 SPARC_PARAMS: dict[str, float] = dict(smoothness.SPARC_PARAMS)
 FEATURE_COLUMNS = ("participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
@@ -82,7 +84,7 @@ class Segment:
 
 def diff_window(fs: float, span_s: float = DIFF_SPAN_S) -> int:
     """Samples (odd, at least 3) of the differentiating window that spans ``span_s`` s at ``fs`` Hz."""
-    return max(3, 2 * int(round(span_s * fs / 2)) + 1)
+    return max(MIN_DIFF_WINDOW, 2 * int(round(span_s * fs / 2)) + 1)
 
 
 def velocity(pos: np.ndarray, fs: float, span_s: float = DIFF_SPAN_S) -> np.ndarray:
@@ -111,7 +113,7 @@ def segment_arrays(t: np.ndarray, pos: np.ndarray, contact: np.ndarray, fs: floa
     if hits.size == 0:
         return "no contact: the contact flag is never 1"
     c = int(hits[0])
-    if c < 2:
+    if c < MIN_APPROACH_SAMPLES:
         return f"in contact from sample {c + 1}: no approach recorded before contact"
     vel = velocity(pos[:c], fs)
     speed = np.linalg.norm(vel, axis=1)
