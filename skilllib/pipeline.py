@@ -100,7 +100,7 @@ def trials_section(features: pd.DataFrame) -> list[dict[str, Any]]:
 
 def choose_k(requested: int, sweep: pt.SilhouetteSweep) -> tuple[int, str | None]:
     """The k to use: ``requested`` if the sweep reached it, else the largest k the data allow."""
-    largest = int(sweep.ks[-1])
+    largest, requested = int(sweep.ks[-1]), int(requested)
     if requested <= largest:
         return requested, None
     return largest, (f"k = {requested} needs more distinct selected trials than there are; "
@@ -190,7 +190,7 @@ def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int
         "dataset": {"path": _display_path(path, data), "n_trials": len(features),
                     "n_participants": int(features["participant"].nunique()),
                     "fs": _plain(float(recordings.fs))},
-        "sparc_params": {key: float(v) for key, v in params.items()},
+        "sparc_params": {"fc": params["fc"], "amp_th": params["amp_th"], "padlevel": int(params["padlevel"])},
         "contact_speed_window": list(CONTACT_WINDOW),
         "trials": trials_section(features),
         "n_selected": len(selected),
