@@ -17,9 +17,17 @@ book: venv theme
 	$(BIN)/python scripts/build_site.py
 	@echo "The site is in _build/html (open _build/html/index.html)."
 
+# Every chapter is executed once: nbmake runs copies in _executed/ and keeps their outputs
+# (--overwrite; nbmake skips any path with a _build folder), with the kernel settings of the site build (inline retina figures), and the site tests
+# render those outputs (BOOK_EXECUTED; scripts/build_site.py --executed) instead of executing again.
+EXECUTED := _executed
 test: venv theme
-	$(BIN)/python -m pytest tests
-	$(BIN)/python -m pytest --nbmake --nbmake-timeout=900 notebooks/[0-9][0-9]_*.ipynb
+	rm -rf $(EXECUTED) && mkdir -p $(EXECUTED) _build/ipython/profile_default
+	cp notebooks/[0-9][0-9]_*.ipynb $(EXECUTED)/
+	echo 'c.InlineBackend.figure_formats = {"retina"}' > _build/ipython/profile_default/ipython_kernel_config.py
+	IPYTHONDIR=$(CURDIR)/_build/ipython MPLBACKEND=module://matplotlib_inline.backend_inline \
+	  $(BIN)/python -m pytest --nbmake --nbmake-timeout=900 --overwrite $(EXECUTED)/[0-9][0-9]_*.ipynb
+	BOOK_EXECUTED=$(CURDIR)/$(EXECUTED) $(BIN)/python -m pytest tests
 
 lab: venv
 	$(BIN)/jupyter lab --notebook-dir=notebooks $(if $(filter 0,$(shell id -u)),--allow-root)
@@ -52,4 +60,4 @@ $(THEME_STAMP): theme/package-lock.json theme/package.json
 	touch $(THEME_STAMP)
 
 clean:
-	rm -rf _build .pytest_cache mutants
+	rm -rf _build _executed .pytest_cache mutants

@@ -2,6 +2,8 @@
 
     .venv/bin/python scripts/build_site.py                # execute every chapter, then render
     .venv/bin/python scripts/build_site.py --no-execute   # reuse the chapters executed last time
+    .venv/bin/python scripts/build_site.py --executed DIR # take the chapters executed elsewhere (make test:
+                                                          # nbmake --overwrite on copies in DIR)
 
 Steps:
 1. Stage: copy myst.yml (its `site: template` made absolute), the pages of the toc and the files they
@@ -33,7 +35,7 @@ ROOT = Path(__file__).resolve().parents[1]
 # Never staged: tooling, caches and the build itself. Everything else is, so that pages can refer to
 # images, bibliographies and data files next to them.
 SKIP_DIRS = {".git", ".venv", "_build", "node_modules", "theme", "tests", "__pycache__", ".pytest_cache",
-             ".hypothesis", ".ipynb_checkpoints", ".benchmarks", ".ci", "out", "results", "skilllib.egg-info"}
+             ".hypothesis", ".ipynb_checkpoints", ".benchmarks", ".ci", "out", "results", "skilllib.egg-info", "_executed", "mutants"}
 ANSI = re.compile(r"\x1b\[[0-9;?]*[A-Za-z]")
 
 
@@ -136,6 +138,26 @@ def execute_notebook(src: Path, rel: str, timeout: int):
     return nb
 
 
+def executed_elsewhere(src: Path, rel: str, folder: Path):
+    """The notebook ``folder/<name>`` executed by another runner (``make test`` runs nbmake with
+    ``--overwrite`` on copies), after checking that it holds the chapter's own code cells and that every
+    code cell ran without an error."""
+    done = folder / src.name
+    if not done.is_file():
+        raise BuildError(f"{rel}: no executed copy {done} (--executed)")
+    nb, ran = read_notebook(src, rel), read_notebook(done, rel)
+    code = [(c.source, c.metadata.get("tags", [])) for c in nb.cells if c.cell_type == "code"]
+    if code != [(c.source, c.metadata.get("tags", [])) for c in ran.cells if c.cell_type == "code"]:
+        raise BuildError(f"{rel}: the executed copy {done} has other code than the chapter: execute it again")
+    for i, cell in enumerate(c for c in ran.cells if c.cell_type == "code"):
+        if cell.get("execution_count") is None or any(o.get("output_type") == "error" for o in cell.outputs):
+            raise BuildError(f"{rel}: code cell {i + 1} of {done} did not run, or raised an error")
+    for mine, theirs in zip((c for c in nb.cells if c.cell_type == "code"),
+                            (c for c in ran.cells if c.cell_type == "code")):
+        mine.outputs, mine.execution_count = theirs.outputs, theirs.execution_count
+    return nb  # the chapter's own markdown cells and metadata, the other runner's outputs
+
+
 def run_cells(client, nb, rel: str, timeout: int) -> None:
     from nbclient.exceptions import CellExecutionError, CellTimeoutError
 
@@ -179,7 +201,8 @@ def find_myst() -> str:
     raise BuildError("the myst command was not found (pip install mystmd in the venv)")
 
 
-def build(project: Path, build_dir: Path, execute: bool, timeout: int, chapter_numbers: bool) -> Path:
+def build(project: Path, build_dir: Path, execute: bool, timeout: int, chapter_numbers: bool,
+          executed: Path | None = None) -> Path:
     t_start = time.perf_counter()
     cfg, files = read_config(project)
     theme = (project / cfg["site"]["template"]).resolve()
@@ -204,7 +227,9 @@ def build(project: Path, build_dir: Path, execute: bool, timeout: int, chapter_n
         src, dst = project / rel, staging / rel
         chapter = k if (chapter_numbers and k > 0) else None
         if rel.endswith(".ipynb"):
-            if execute:
+            if executed is not None:
+                nb = executed_elsewhere(src, rel, executed)
+            elif execute:
                 t0 = time.perf_counter()
                 nb = execute_notebook(src, rel, timeout)
                 log(f"executed {rel} in {time.perf_counter() - t0:.1f} s")
@@ -281,13 +306,16 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--project", type=Path, default=ROOT, help="folder with myst.yml (default: the repository)")
     ap.add_argument("--build-dir", type=Path, help="default: PROJECT/_build (the site goes to BUILD_DIR/html)")
     ap.add_argument("--no-execute", action="store_true", help="reuse the notebooks executed by the last build")
+    ap.add_argument("--executed", type=Path, metavar="DIR",
+                    help="take each chapter's outputs from DIR/<name>.ipynb, executed by another runner")
     ap.add_argument("--timeout", type=int, default=600, help="seconds allowed per cell (default 600)")
     ap.add_argument("--no-chapter-numbers", action="store_true", help="number figures 1, 2, ... on every page")
     args = ap.parse_args(argv)
     project = args.project.resolve()
     build_dir = (args.build_dir or project / "_build").resolve()
     try:
-        out = build(project, build_dir, not args.no_execute, args.timeout, not args.no_chapter_numbers)
+        out = build(project, build_dir, not args.no_execute, args.timeout, not args.no_chapter_numbers,
+                    args.executed.resolve() if args.executed else None)
     except BuildError as err:
         print(f"build_site: ERROR: {err}", file=sys.stderr, flush=True)
         return 1

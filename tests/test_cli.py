@@ -317,6 +317,7 @@ def test_sparc_settings_change_the_values_that_depend_on_them_only(tmp_path, cap
     assert (a.sparc[valid] != b.sparc[valid]).any() and b.sparc_capped[valid].sum() >= a.sparc_capped[valid].sum()
 
 
+@pytest.mark.slow
 def test_sensitivity_compares_with_the_runs_own_setting(tmp_path, capsys, small_frame):
     data = _write(small_frame, tmp_path / "rec.csv")
     code, out, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"),
@@ -422,6 +423,7 @@ def _plain(v):
 
 # --- the default run on the committed cohort, with figures --------------------------------------------
 
+@pytest.mark.slow
 def test_default_run_writes_results_and_figures(tmp_path):
     out = tmp_path / "cohort"
     proc = subprocess.run([sys.executable, "-m", "skilllib", "run", "--out", str(out), "--quiet"],

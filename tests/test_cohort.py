@@ -102,6 +102,7 @@ def _survey(seeds: list[int]) -> pd.DataFrame:
     return calibration.seed_survey(seeds)
 
 
+@pytest.mark.slow
 def test_the_seed_rule_is_recomputed_from_scratch():
     """The committed survey holds seeds 0..SEED; every row is recomputed here (generator, CSV rounding,
     features, silhouette sweep: about 4 s a seed, two processes), and the rule picks SEED: the first seed

@@ -585,6 +585,7 @@ def test_sensitivity_uses_the_runs_parameters_k_scaling_and_seed(runs, base_file
               qd_limits=UR5_LIMITS)
 
 
+@pytest.mark.slow
 def test_figures_are_written_only_when_asked_and_change_nothing_else(tmp_path, runs, eight_selected):
     """write_figures (on the small file of the k tests, to save time): the figure files listed and
     present; every other key identical to the run without figures, which writes results.json and nothing
