@@ -401,3 +401,45 @@ def test_a_failing_cell_stops_the_build_naming_chapter_and_cell(tmp_path):
     assert proc.returncode != 0
     assert "notebooks/01_broken.ipynb: cell 3 (code cell 2) raised ZeroDivisionError: division by zero" in proc.stderr
     assert not (project / "_build" / "html").exists()
+
+
+def _build_module():
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("build_site", BUILD_SCRIPT)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_outputs_executed_elsewhere_are_taken_only_for_the_same_code_run_without_error(tmp_path):
+    """`make test` renders the outputs nbmake wrote (--executed): the chapter's markdown with the copy's
+    outputs; a copy with other code, a cell that did not run or an error output stops the build."""
+    bs = _build_module()
+    src_dir, done_dir = tmp_path / "src", tmp_path / "done"
+    src_dir.mkdir()
+    done_dir.mkdir()
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [nbformat.v4.new_markdown_cell("# Title, edited since"), nbformat.v4.new_code_cell("print(1)")]
+    nbformat.write(nb, src_dir / "01_x.ipynb")
+    ran = nbformat.v4.new_notebook()
+    ran.cells = [nbformat.v4.new_markdown_cell("# Title"), nbformat.v4.new_code_cell("print(1)")]
+    ran.cells[1].execution_count = 1
+    ran.cells[1].outputs = [nbformat.v4.new_output("stream", name="stdout", text="1\n")]
+    nbformat.write(ran, done_dir / "01_x.ipynb")
+    got = bs.executed_elsewhere(src_dir / "01_x.ipynb", "01_x.ipynb", done_dir)
+    assert got.cells[0].source == "# Title, edited since" and got.cells[1].outputs[0]["text"] == "1\n"
+    for broken, words in ((lambda c: setattr(c, "source", "print(2)"), "other code"),
+                          (lambda c: setattr(c, "execution_count", None), "did not run"),
+                          (lambda c: c.outputs.append(nbformat.v4.new_output("error", ename="E", evalue="",
+                                                                             traceback=[])), "did not run")):
+        bad = nbformat.v4.new_notebook()
+        bad.cells = [nbformat.v4.new_markdown_cell("# Title"), nbformat.v4.new_code_cell("print(1)")]
+        bad.cells[1].execution_count = 1
+        broken(bad.cells[1])
+        nbformat.write(bad, done_dir / "01_x.ipynb")
+        with pytest.raises(bs.BuildError, match=words):
+            bs.executed_elsewhere(src_dir / "01_x.ipynb", "01_x.ipynb", done_dir)
+    (done_dir / "01_x.ipynb").unlink()
+    with pytest.raises(bs.BuildError, match="no executed copy"):
+        bs.executed_elsewhere(src_dir / "01_x.ipynb", "01_x.ipynb", done_dir)
