@@ -2,59 +2,51 @@
 
 The companion library of the executable book reproducing Maldonado & Zetzsche (KI 2020). One module
 per idea: :mod:`~skilllib.smoothness` (SPARC, LDLJ), :mod:`~skilllib.cohort` (the synthetic
-experiment), :mod:`~skilllib.data` (the CSV format), :mod:`~skilllib.features` (segmentation and
+experiment), :mod:`~skilllib.data` (the recordings format), :mod:`~skilllib.features` (segmentation and
 per-trial features), :mod:`~skilllib.prototypes` (silhouettes, K-means prototypes),
 :mod:`~skilllib.robots` and :mod:`~skilllib.transfer` (joint velocities on an arm),
 :mod:`~skilllib.figures` and :mod:`~skilllib.pipeline` (``python -m skilllib run``).
 
-The robot names (``simple6``, ``get_robot``, ...) are loaded on first use, so that ``import skilllib``
-does not pay for importing roboticstoolbox. The transfer itself is ``skilllib.transfer.transfer``.
+Every name is loaded on first use (PEP 562), so that ``import skilllib`` and ``python -m skilllib
+--help`` do not pay for importing pandas, scikit-learn, roboticstoolbox or matplotlib.
 """
 from __future__ import annotations
 
 import importlib
 from typing import Any
 
-from .data import DataFormatError, read_recordings, write_recordings
-from .features import segment, select, trial_features
-from .prototypes import (
-    PrototypeResult,
-    SilhouetteSweep,
-    bootstrap_stability,
-    fit_prototypes,
-    seed_stability,
-    silhouette_sweep,
-)
-from .smoothness import (
-    SPARC_PARAMS,
-    SparcSpectrum,
-    ldlj,
-    ldlj_many,
-    minimum_jerk_speed,
-    sparc,
-    sparc_many,
-    sparc_spectrum,
-)
+__version__ = "0.2.0"
 
+#: public name -> the submodule that defines it
 _LAZY = {
-    "simple6": "robots", "DEFAULT_POSE_DEG": "robots", "get_robot": "robots",
-    "TransferResult": "transfer", "transfer_summary": "transfer",
-    "time_scale_factor": "transfer", "apply_time_scale": "transfer", "EXP_TO_BASE": "transfer",
+    **dict.fromkeys(["sparc", "sparc_many", "sparc_spectrum", "sparc_bands", "SparcSpectrum", "ldlj",
+                     "ldlj_many", "SPARC_PARAMS", "minimum_jerk_speed"], "smoothness"),
+    **dict.fromkeys(["read_recordings", "write_recordings", "DataFormatError"], "data"),
+    **dict.fromkeys(["trial_features", "select", "segment"], "features"),
+    **dict.fromkeys(["fit_prototypes", "silhouette_sweep", "PrototypeResult", "SilhouetteSweep",
+                     "seed_stability", "bootstrap_stability"], "prototypes"),
+    **dict.fromkeys(["simple6", "DEFAULT_POSE_DEG", "get_robot"], "robots"),
+    **dict.fromkeys(["TransferResult", "transfer_summary", "time_scale_factor", "apply_time_scale",
+                     "EXP_TO_BASE"], "transfer"),
 }
+
+#: the submodules, importable as attributes (``skilllib.cohort``) after ``import skilllib``
+_SUBMODULES = {"smoothness", "cohort", "calibration", "data", "datasets", "duration", "features", "filtering",
+               "participants", "pipeline", "prototypes", "robots", "sensitivity", "transfer", "figures"}
 
 
 def __getattr__(name: str) -> Any:
     if name in _LAZY:
-        module = importlib.import_module(f".{_LAZY[name]}", __name__)
-        value = getattr(module, name)
+        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
         globals()[name] = value
         return value
+    if name in _SUBMODULES:
+        return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module 'skilllib' has no attribute {name!r}")
 
 
-__all__ = [
-    "sparc", "sparc_many", "sparc_spectrum", "SparcSpectrum", "ldlj", "ldlj_many", "SPARC_PARAMS",
-    "minimum_jerk_speed", "read_recordings", "write_recordings", "DataFormatError", "trial_features",
-    "select", "segment", "fit_prototypes", "silhouette_sweep", "PrototypeResult", "SilhouetteSweep",
-    "seed_stability", "bootstrap_stability", *_LAZY,
-]
+def __dir__() -> list[str]:
+    return sorted({*globals(), *_LAZY, *_SUBMODULES})
+
+
+__all__ = ["__version__", *_LAZY]

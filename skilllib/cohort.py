@@ -190,7 +190,7 @@ def _participants(rng: np.random.Generator, m: CohortModel) -> list[dict]:
             "rtpv": uni(m.rtpv), "correction_rate": uni(m.correction_rate),
             "start_x": rng.normal(0, 0.02, n), "start_z": rng.normal(0, 0.02, n),
             "tilt_x": np.deg2rad(rng.normal(0, m.tilt_sd, n)), "tilt_z": np.deg2rad(rng.normal(0, m.tilt_sd, n))}
-    return [{"participant": i + 1, **{k: float(v[i]) for k, v in cols.items()}} for i in range(n)]
+    return [{"participant": str(i + 1), **{k: float(v[i]) for k, v in cols.items()}} for i in range(n)]
 
 
 def _plan(rng: np.random.Generator, m: CohortModel, p: dict, h: float, onset: float) -> tuple[list, float, float, int]:
@@ -270,7 +270,7 @@ def _trial(rng: np.random.Generator, m: CohortModel, p: dict, trial: int) -> tup
     frame = (t, pos, (t >= tc).astype(np.int64))
     tf = np.linspace(onset, tc, max(int(np.ceil((tc - onset) * 1e3)), 2) + 1)  # noise-free truth, ~1 kHz
     vf = np.linalg.norm(np.gradient(position(tf), tf, axis=0), axis=1)
-    truth = {"participant": p["participant"], "trial": trial, "travel": h, "t_onset": onset, "t_contact": tc,
+    truth = {"participant": p["participant"], "trial": str(trial), "travel": h, "t_onset": onset, "t_contact": tc,
              "pv": float(vf.max()), "contact_speed": float(vf[-1]), "contact_aim": vc_aim,
              "n_corrections": n_corr, "rtpv": subs[0][3]}
     return frame, truth
@@ -292,8 +292,8 @@ def generate_cohort(seed: int = SEED, model: CohortModel | None = None) -> Cohor
             truths.append(tru)
     n = np.array([len(f[0]) for f in frames])
     pos = np.concatenate([f[1] for f in frames])
-    frame = pd.DataFrame({"participant": np.repeat([tr["participant"] for tr in truths], n),
-                          "trial": np.repeat([tr["trial"] for tr in truths], n),
+    frame = pd.DataFrame({"participant": np.repeat(np.array([tr["participant"] for tr in truths], dtype=object), n),
+                          "trial": np.repeat(np.array([tr["trial"] for tr in truths], dtype=object), n),
                           "t": np.concatenate([f[0] for f in frames]), "x": pos[:, 0], "y": pos[:, 1],
                           "z": pos[:, 2], "contact": np.concatenate([f[2] for f in frames])})[list(COLUMNS)]
     participants = pd.DataFrame(parts).set_index("participant")

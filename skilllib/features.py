@@ -45,6 +45,7 @@ from scipy.signal import savgol_filter
 
 from . import smoothness
 from .data import Recordings, recordings_from_frame
+from .filtering import Lowpass, choose_lowpass
 
 ONSET_SPEED = 0.05  #: m/s, movement onset threshold (the paper)
 CONTACT_WINDOW = (0.3, 0.7)  #: m/s, selected contact speeds, inclusive (the paper)
@@ -55,7 +56,7 @@ MIN_APPROACH_SAMPLES = 2  #: fewer samples before contact leave nothing to diffe
 #: SPARC settings of the SPARC chapter (Balasubramanian et al. 2015 defaults): fc in Hz, amp_th, padlevel
 SPARC_PARAMS: dict[str, float] = dict(smoothness.SPARC_PARAMS)
 FEATURE_COLUMNS = ("participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
-                   "sparc_band_end_hz", "sparc_capped", "ldlj", "n", "t_onset", "t_contact")
+                   "sparc_band_end_hz", "sparc_capped", "ldlj", "n", "t_onset", "t_contact", "resampled")
 
 
 @dataclass(frozen=True)
@@ -66,8 +67,8 @@ class Segment:
     ``onset`` and ``contact``: indices in the trial of the onset sample and of the first contact sample.
     """
 
-    participant: Any
-    trial: int
+    participant: str
+    trial: str
     t: np.ndarray
     pos: np.ndarray
     vel: np.ndarray
@@ -106,15 +107,19 @@ def velocity(pos: np.ndarray, fs: float, span_s: float = DIFF_SPAN_S) -> np.ndar
 
 def segment_arrays(t: np.ndarray, pos: np.ndarray, contact: np.ndarray, fs: float, *,
                    onset_speed: float = ONSET_SPEED, min_samples: int = MIN_SEGMENT_SAMPLES,
-                   participant: Any = None, trial: int = -1) -> Segment | str:
+                   participant: Any = None, trial: Any = None, lowpass: Lowpass | None = None) -> Segment | str:
     """Segment one trial's samples (``contact`` boolean); returns the :class:`Segment` or the reason
-    (a string) why the trial cannot be segmented."""
+    (a string) why the trial cannot be segmented. ``lowpass``: the filter applied to the approach's
+    positions before they are differentiated (:mod:`skilllib.filtering`; None: none); the segment's
+    ``pos`` are then the filtered positions."""
     hits = np.flatnonzero(contact)
     if hits.size == 0:
         return "no contact: the contact flag is never 1"
     c = int(hits[0])
     if c < MIN_APPROACH_SAMPLES:
         return f"in contact from sample {c + 1}: no approach recorded before contact"
+    if lowpass is not None and lowpass.cutoff_hz is not None:
+        pos = np.concatenate([lowpass.apply(pos[:c], fs), pos[c:]])
     vel = velocity(pos[:c], fs)
     speed = np.linalg.norm(vel, axis=1)
     moving = np.flatnonzero(speed > onset_speed)
@@ -135,21 +140,24 @@ def _as_recordings(recordings: Recordings | pd.DataFrame) -> Recordings:
     return recordings if isinstance(recordings, Recordings) else recordings_from_frame(recordings)
 
 
-def segment(recordings: Recordings | pd.DataFrame, participant: Any, trial: int, *,
-            onset_speed: float = ONSET_SPEED, min_samples: int = MIN_SEGMENT_SAMPLES) -> Segment:
-    """The segmented approach (onset to the last sample before contact) of one trial.
+def segment(recordings: Recordings | pd.DataFrame, participant: Any, trial: Any, *,
+            onset_speed: float = ONSET_SPEED, min_samples: int = MIN_SEGMENT_SAMPLES,
+            lowpass: Lowpass | None = None) -> Segment:
+    """The segmented approach (onset to the last sample before contact) of one trial; ``lowpass`` as in
+    :func:`segment_arrays` (a run's filter: ``features.attrs["lowpass"]`` of :func:`trial_features`).
 
     Raises KeyError for an unknown trial and ValueError, with the reason, for an invalid one.
     """
     rec = _as_recordings(recordings)
     tr = rec.trial(participant, trial)
+    participant, trial = tr.participant, tr.trial
     row = rec.trials[(rec.trials["participant"] == participant) & (rec.trials["trial"] == trial)].iloc[0]
     if row["status"] != "ok":
-        raise ValueError(f"trial {trial} of participant {participant!r} is invalid: {row['reason']}")
+        raise ValueError(f"trial {trial!r} of participant {participant!r} is invalid: {row['reason']}")
     seg = segment_arrays(tr.t, tr.pos, tr.contact, rec.fs, onset_speed=onset_speed, min_samples=min_samples,
-                         participant=participant, trial=trial)
+                         participant=participant, trial=trial, lowpass=lowpass)
     if isinstance(seg, str):
-        raise ValueError(f"trial {trial} of participant {participant!r} cannot be segmented: {seg}")
+        raise ValueError(f"trial {trial!r} of participant {participant!r} cannot be segmented: {seg}")
     return seg
 
 
@@ -162,9 +170,33 @@ def _window_reason(v: float, window: tuple[float, float]) -> str:
     return ""
 
 
+def approaches(recordings: Recordings | pd.DataFrame) -> list[np.ndarray]:
+    """The positions (m) before first contact of every usable trial (status ok), in trial order: what
+    :func:`skilllib.filtering.choose_lowpass` looks at to choose a cut-off."""
+    rec = _as_recordings(recordings)
+    out = []
+    for (p, tr), status in zip(rec.keys(), rec.trials["status"]):
+        if status == "ok":
+            d = rec.trial(p, tr)
+            hits = np.flatnonzero(d.contact)
+            out.append(d.pos[:int(hits[0])] if hits.size else d.pos)
+    return out
+
+
+def run_lowpass(recordings: Recordings | pd.DataFrame, lowpass: str | float | Lowpass | None = "auto") -> Lowpass:
+    """The :class:`skilllib.filtering.Lowpass` that ``lowpass`` (``"auto"``, ``"none"``, Hz or a Lowpass)
+    means for these recordings (``"auto"``: Winter's residual analysis over their approaches)."""
+    rec = _as_recordings(recordings)
+    if isinstance(lowpass, Lowpass):
+        return lowpass
+    fs = rec.fs
+    window = diff_window(fs) if np.isfinite(fs) else MIN_DIFF_WINDOW
+    return choose_lowpass(lowpass, approaches(rec) if lowpass == "auto" else [], fs, window)
+
+
 def trial_features(recordings: Recordings | pd.DataFrame, *, sparc_params: Mapping[str, float] | None = None,
                    window: tuple[float, float] = CONTACT_WINDOW, onset_speed: float = ONSET_SPEED,
-                   min_samples: int = MIN_SEGMENT_SAMPLES,
+                   min_samples: int = MIN_SEGMENT_SAMPLES, lowpass: str | float | Lowpass | None = "auto",
                    progress: Callable[[Sequence[Any], str], Iterable[Any]] | None = None) -> pd.DataFrame:
     """One row per trial of ``recordings`` (all of them, in their order) with its features and status.
 
@@ -172,19 +204,24 @@ def trial_features(recordings: Recordings | pd.DataFrame, *, sparc_params: Mappi
     (empty when selected), ``pv`` (m/s), ``contact_speed`` (m/s), ``duration`` (s), ``sparc``,
     ``sparc_band_end_hz`` (Hz), ``sparc_capped`` (nullable boolean: fc ended the band), ``ldlj``, ``n``
     (segment samples), ``t_onset``, ``t_contact`` (s, time stamps of the onset sample and of the
-    first contact sample). Features are NaN (NA) only for invalid trials. ``sparc_params`` defaults to
-    :data:`SPARC_PARAMS`; ``window`` is the inclusive contact-speed window in m/s; ``progress(items,
+    first contact sample), ``resampled`` (the trial's time stamps were irregular and it was resampled onto
+    the uniform grid, :mod:`skilllib.timing`). Features are NaN (NA) only for invalid trials.
+    ``sparc_params`` defaults to :data:`SPARC_PARAMS`; ``window`` is the inclusive contact-speed window in
+    m/s; ``lowpass``: the positions' low-pass filter (:func:`run_lowpass`; default ``"auto"``, which does
+    not filter the book's cohort), recorded in ``attrs["lowpass"]`` of the result; ``progress(items,
     description)`` may wrap the loop over trials (e.g. tqdm).
     """
     rec = _as_recordings(recordings)
     params = {**SPARC_PARAMS, **(sparc_params or {})}
+    filt = run_lowpass(rec, lowpass)
     rows, speeds = [], []
-    items = list(zip(rec.keys(), rec.trials["status"], rec.trials["reason"]))
-    for (p, tr), status, reason in (progress(items, "features") if progress else items):
-        row = {"participant": p, "trial": tr, "status": "invalid", "reason": reason}
+    items = list(zip(rec.keys(), rec.trials["status"], rec.trials["reason"], rec.trials["timing"]))
+    for (p, tr), status, reason, timing_note in (progress(items, "features") if progress else items):
+        row = {"participant": p, "trial": tr, "status": "invalid", "reason": reason, "resampled": bool(timing_note)}
         if status == "ok":
             d = rec.trial(p, tr)
-            seg = segment_arrays(d.t, d.pos, d.contact, rec.fs, onset_speed=onset_speed, min_samples=min_samples)
+            seg = segment_arrays(d.t, d.pos, d.contact, rec.fs, onset_speed=onset_speed, min_samples=min_samples,
+                                 lowpass=filt)
             if isinstance(seg, str):
                 row["reason"] = seg
             else:
@@ -205,6 +242,8 @@ def trial_features(recordings: Recordings | pd.DataFrame, *, sparc_params: Mappi
     out = pd.DataFrame(rows, columns=list(FEATURE_COLUMNS))
     out["n"] = out["n"].astype("Int64")
     out["sparc_capped"] = out["sparc_capped"].astype("boolean")
+    out["resampled"] = out["resampled"].astype(bool)
+    out.attrs["lowpass"] = filt
     return out
 
 

@@ -9,11 +9,8 @@ written to ``results.json`` (schema in README) and writes the figures beside it.
 """
 from __future__ import annotations
 
-import json
 import math
-import re
 import warnings
-from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -22,17 +19,20 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from . import __version__
 from . import prototypes as pt
-from .data import MAX_RANGE_M, Recordings, read_recordings
-from .features import CONTACT_WINDOW, ONSET_SPEED, segment, select, trial_features
+from .data import Recordings, read_recordings, recordings_from_frame
+from .datasets import cohort_path
+from .features import CONTACT_WINDOW, ONSET_SPEED, run_lowpass, segment, select, trial_features
+from .filtering import Lowpass, parse_lowpass
+from .output import output_folder, write_json_atomic
 from .robots import RobotSetup, get_robot, qd_limits_vector
 from .sensitivity import SparcSensitivity, sparc_sensitivity
 from .smoothness import DEFAULT_AMP_TH, DEFAULT_FC, DEFAULT_PADLEVEL
 from .transfer import TransferResult, transfer, transfer_summary
 
-#: The committed synthetic cohort (default input).
-REPO_ROOT = Path(__file__).resolve().parents[1]
-DEFAULT_DATA = REPO_ROOT / "data" / "cohort.csv"
+#: The book's synthetic cohort (default input), shipped with skilllib (:mod:`skilllib.datasets`).
+DEFAULT_DATA = cohort_path()
 
 #: Fewest selected trials the clustering step accepts (K-means with k = 2 and a silhouette need 3).
 MIN_SELECTED = 3
@@ -78,17 +78,19 @@ def _plain(v: Any) -> Any:
     return v
 
 
-def _display_path(path: Path, given: str | Path | None) -> str:
-    """The data path for results.json: as given, or relative to the repo for the default cohort."""
-    if given is not None:
+def _display_path(given: Any) -> str:
+    """The data for results.json: the path as given, ``<DataFrame>``, or the shipped cohort's name."""
+    if given is None:
+        return "skilllib/datasets/cohort.csv"
+    if isinstance(given, (str, Path)):
         return str(given)
-    return path.relative_to(REPO_ROOT).as_posix()
+    return getattr(given, "source", "<DataFrame>")
 
 
 def trials_section(features: pd.DataFrame) -> list[dict[str, Any]]:
     """One results.json entry per input trial: ids, status, reason and features (null when invalid)."""
     cols = ["participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
-            "sparc_band_end_hz", "sparc_capped", "ldlj"]
+            "sparc_band_end_hz", "sparc_capped", "ldlj", "resampled"]
     out = []
     for rec in features[cols].to_dict(orient="records"):
         entry = {c: _plain(rec[c]) for c in cols}
@@ -123,12 +125,19 @@ def check_sparc_params(fc: float, amp_th: float, padlevel: int) -> dict[str, flo
     return {"fc": fc, "amp_th": amp_th, "padlevel": int(padlevel)}
 
 
+#: K-means' random_state must lie in 0 .. 2**32 - 1 (numpy's legacy seeding, which scikit-learn uses).
+MAX_SEED = 2**32 - 1
+
+
 def check_options(k: int, robot: str, qd_max: Sequence[float] | float | None,
-                  scaling: str) -> tuple[RobotSetup, np.ndarray]:
+                  scaling: str, random_state: int = 0) -> tuple[RobotSetup, np.ndarray]:
     """The robot setup and the joint velocity limits (rad/s) for the options; :class:`OptionError` for a
     bad one. Called before the data are read, so a wrong option fails at once."""
     if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or k < 2:
         raise OptionError(f"k must be an integer of at least 2, got {k!r}")
+    if isinstance(random_state, bool) or not isinstance(random_state, (int, np.integer)) or \
+            not 0 <= random_state <= MAX_SEED:
+        raise OptionError(f"seed must be an integer from 0 to {MAX_SEED} (K-means' random_state), got {random_state!r}")
     if scaling not in ("raw", "standard"):
         raise OptionError(f"scaling must be 'raw' or 'standard', got {scaling!r}")
     try:
@@ -149,48 +158,102 @@ def _check_nyquist(params: dict[str, float], fs: float) -> None:
                           f"recordings (sampled at {fs:g} Hz); choose fc <= {fs / 2:g} Hz")
 
 
-def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int = pt.DEFAULT_K,
-        robot: str = "simple6", qd_max: Sequence[float] | float | None = None, scaling: str = "raw",
-        random_state: int = 0, fc: float = DEFAULT_FC, amp_th: float = DEFAULT_AMP_TH,
-        padlevel: int = DEFAULT_PADLEVEL, sensitivity: Sequence[Mapping[str, float]] | None = None,
-        progress: Progress = _no_progress, write_figures: bool = True) -> PipelineRun:
-    """Run the pipeline on ``data`` (default: the committed synthetic cohort) and write ``out``.
+def load_input(data: str | Path | pd.DataFrame | Recordings | None = None,
+               **read_options: Any) -> Recordings:
+    """The recordings of ``data``: the shipped cohort (None), :class:`Recordings` as they are, a DataFrame
+    (validated), or a path: a CSV (compressed or not), a C3D or TRC file, or a folder of them
+    (:func:`skilllib.formats.load_recordings`, which ``read_options`` go to: ``columns``, ``units``,
+    ``up_axis``, ``marker``, ``contact_channel``, ``contact_height``, ``name_pattern``)."""
+    options = {k: v for k, v in read_options.items() if v is not None}
+    if not options:
+        if data is None:
+            return read_recordings(DEFAULT_DATA)
+        if isinstance(data, Recordings):
+            return data
+        if isinstance(data, pd.DataFrame):
+            return recordings_from_frame(data)
+        path = Path(data)
+        if not path.is_dir() and path.suffix.lower() not in (".c3d", ".trc"):
+            return read_recordings(path)
+    from . import formats  # C3D, TRC, folders, other column names, units and axes
 
-    ``k``: clusters (the paper: 6), reduced with a message when the selected trials allow fewer;
-    ``robot``: a name of :func:`skilllib.robots.get_robot`; ``qd_max``: joint velocity limits in
-    rad/s (one for all joints or one per joint; default: the robot's); ``scaling``: "raw" (the paper)
-    or "standard"; ``fc`` (Hz, at most the Nyquist frequency of the recordings), ``amp_th`` and
-    ``padlevel``: the SPARC parameters (:func:`skilllib.smoothness.sparc`; default the book's, fc = 20 Hz);
-    ``sensitivity``: other SPARC settings (dicts of some of fc, amp_th, padlevel; the rest as this run's)
-    to compare with this run's (:func:`skilllib.sensitivity.sparc_sensitivity`, results.json
-    ``sparc_sensitivity``); ``progress(items, description)`` wraps the long loops (e.g. tqdm).
-    Raises :class:`OptionError` for a bad option (before reading the data) and
-    :class:`skilllib.data.DataFormatError` for a file that cannot be read. Bad trials never raise: they are
-    in ``results["trials"]`` as ``invalid`` with their reason. With fewer than :data:`MIN_SELECTED` selected
-    trials (or fewer than 2 distinct ones) the clustering and transfer are skipped, said in ``messages``.
-    results.json is written before the figures, so a figure that fails cannot lose the trials.
+    return formats.load_recordings(DEFAULT_DATA if data is None else data, **options)
+
+
+def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | Path | None = None, *,
+        k: int = pt.DEFAULT_K, robot: str = "simple6", qd_max: Sequence[float] | float | None = None,
+        scaling: str = "raw", random_state: int = 0, fc: float = DEFAULT_FC, amp_th: float = DEFAULT_AMP_TH,
+        padlevel: int = DEFAULT_PADLEVEL, sensitivity: Sequence[Mapping[str, float]] | None = None,
+        lowpass: str | float | Lowpass | None = "auto", read_options: Mapping[str, Any] | None = None,
+        progress: Progress = _no_progress, write_figures: bool = True) -> PipelineRun:
+    """Run the pipeline on ``data`` (default: the book's synthetic cohort) and write ``out``.
+
+    ``data``: a path (CSV, compressed CSV, C3D, TRC, or a folder of them), a pandas DataFrame in the
+    recordings format, or :class:`~skilllib.data.Recordings`; ``read_options``: how to read it
+    (:func:`load_input`); ``k``: clusters (the paper: 6), reduced with a message when the selected trials
+    allow fewer; ``robot``: a name of :func:`skilllib.robots.get_robot`; ``qd_max``: joint velocity limits
+    in rad/s (one for all joints or one per joint; default: the robot's); ``scaling``: "raw" (the paper) or
+    "standard"; ``random_state``: K-means' seed (0 .. 2**32 - 1); ``fc`` (Hz, at most the Nyquist frequency
+    of the recordings), ``amp_th`` and ``padlevel``: the SPARC parameters (:func:`skilllib.smoothness.sparc`;
+    default the book's, fc = 20 Hz); ``sensitivity``: other SPARC settings (dicts of some of fc, amp_th,
+    padlevel; the rest as this run's) to compare with this run's
+    (:func:`skilllib.sensitivity.sparc_sensitivity`, results.json ``sparc_sensitivity``); ``lowpass``: the
+    positions' low-pass filter, ``"auto"`` (default: only when the noise needs it), ``"none"`` or a cut-off
+    in Hz (:mod:`skilllib.filtering`; results.json ``filter``); ``progress(items, description)`` wraps the
+    long loops (e.g. tqdm).
+
+    Raises :class:`OptionError` for a bad option (before reading the data),
+    :class:`skilllib.data.DataFormatError` for a file that cannot be read and
+    :class:`skilllib.output.OutputError` for an output folder that cannot be used. Bad trials never raise:
+    they are in ``results["trials"]`` as ``invalid`` with their reason. With fewer than :data:`MIN_SELECTED`
+    selected trials (or fewer than 2 distinct ones) the clustering and transfer are skipped, said in
+    ``messages``. ``out`` is written as a whole (:mod:`skilllib.output`): a fresh folder replaces it only
+    when everything is written, so old figures never sit beside new results and a failed run leaves it as
+    it was.
     """
-    path = Path(data) if data is not None else DEFAULT_DATA
-    setup, limits = check_options(k, robot, qd_max, scaling)
+    setup, limits = check_options(k, robot, qd_max, scaling, random_state)
     params = check_sparc_params(fc, amp_th, padlevel)
     variants = [check_sparc_params(**{**params, **dict(v)}) for v in _settings(sensitivity)]
-
+    if not isinstance(lowpass, Lowpass):
+        try:
+            lowpass = parse_lowpass(lowpass)
+        except ValueError as e:
+            raise OptionError(str(e)) from None
     if out is not None:
         out = Path(out)
         if out.exists() and not out.is_dir():
             raise OptionError(f"{out}: exists and is not a folder (--out names the folder for the results)")
-    recordings = read_recordings(path)
+    recordings = load_input(data, **dict(read_options or {}))
     for p in (params, *variants):
         _check_nyquist(p, recordings.fs)
+    try:
+        filt = run_lowpass(recordings, lowpass)
+    except ValueError as e:  # a cut-off too high for the sampling rate
+        raise OptionError(str(e)) from None
+    result = compute(recordings, data, setup=setup, limits=limits, k=k, scaling=scaling,
+                     random_state=random_state, params=params, variants=variants, lowpass=filt, progress=progress)
     if out is not None:
-        out.mkdir(parents=True, exist_ok=True)
-    features = trial_features(recordings, sparc_params=params, progress=progress)
+        with output_folder(out) as folder:
+            write_json_atomic(result.results, folder / "results.json")
+            if write_figures:
+                result.results["figures"] = _write_figures(result, folder, setup.robot)
+                write_json_atomic(result.results, folder / "results.json")
+    return result
+
+
+def compute(recordings: Recordings, data: Any, *, setup: RobotSetup, limits: np.ndarray, k: int, scaling: str,
+            random_state: int, params: dict[str, float], variants: list[dict[str, float]], lowpass: Lowpass,
+            progress: Progress = _no_progress) -> PipelineRun:
+    """The pipeline's computation on validated ``recordings`` with checked options (see :func:`run`)."""
+    features = trial_features(recordings, sparc_params=params, lowpass=lowpass, progress=progress)
     selected = select(features)
     results: dict[str, Any] = {
-        "dataset": {"path": _display_path(path, data), "n_trials": len(features),
+        "skilllib_version": __version__,
+        "dataset": {"path": _display_path(data), "n_trials": len(features),
                     "n_participants": int(features["participant"].nunique()),
-                    "fs": _plain(float(recordings.fs))},
+                    "fs": _plain(float(recordings.fs)), "n_resampled": int(features["resampled"].sum())},
         "sparc_params": {"fc": params["fc"], "amp_th": params["amp_th"], "padlevel": int(params["padlevel"])},
+        "filter": lowpass.to_dict(),
         "contact_speed_window": list(CONTACT_WINDOW),
         "trials": trials_section(features),
         "n_selected": len(selected),
@@ -198,12 +261,21 @@ def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int
     result = PipelineRun(results=results, recordings=recordings, features=features)
     if not np.isfinite(recordings.fs):
         result.messages.append("the sampling rate is unknown: no trial is usable to derive it from the time stamps")
+    n_res = results["dataset"]["n_resampled"]
+    if n_res:
+        result.messages.append(f"{n_res} trial(s) had irregular time stamps (jitter or dropped frames) and were "
+                               f"resampled onto a uniform {recordings.fs:.4g} Hz grid (trials[].resampled)")
     no_rest = int(features["reason"].astype(str).str.startswith("no rest before onset").sum())
     if no_rest > NO_REST_FRACTION * len(features):
+        hint = ("a stronger low-pass filter (--lowpass HZ)" if lowpass.cutoff_hz is not None else
+                "a low-pass filter (--lowpass auto or HZ)" if lowpass.chosen_by == "none" else
+                "a low-pass filter (--lowpass HZ)")
         result.messages.append(
             f"{no_rest} of {len(features)} trials are invalid with 'no rest before onset': either the recordings "
             f"start after the movement began, or the position noise is so large that its derivative exceeds the "
-            f"{ONSET_SPEED:g} m/s onset speed; then low-pass filter the positions before export (chapter 5)")
+            f"{ONSET_SPEED:g} m/s onset speed; then try {hint} (chapter 5)")
+    if lowpass.cutoff_hz is not None:
+        result.messages.append(filter_message(selected, lowpass))
     if len(selected):
         result.messages.append(capped_message(selected, params))
 
@@ -237,24 +309,20 @@ def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int
         results["scaling"] = scaling
         results["clusters"] = fit.to_dict()["clusters"]
         for c in progress(list(range(k_used)), "transfer"):
-            seg = segment(recordings, _plain(fit.prototypes.at[c, "participant"]),
-                          _plain(fit.prototypes.at[c, "trial"]))
+            seg = segment(recordings, fit.prototypes.at[c, "participant"], fit.prototypes.at[c, "trial"],
+                          lowpass=lowpass)
             result.profiles.append((seg.t - seg.t[0], seg.speed))
             result.transfers.append(transfer(setup.robot, seg.t - seg.t[0], seg.pos, seg.vel, q0=setup.q0,
                                              qd_limits=limits, cluster=c))
         results["transfer"] = transfer_summary(result.transfers)
     if variants and sweep is not None:
         result.sensitivity = sparc_sensitivity(recordings, [params, *variants], k=results["k"], scaling=scaling,
-                                               random_state=random_state, reference=(features, sweep))
+                                               random_state=random_state, reference=(features, sweep),
+                                               lowpass=lowpass)
         results["sparc_sensitivity"] = result.sensitivity.to_dict()
     elif variants:
         result.messages.append("no SPARC sensitivity analysis: too few selected trials to cluster")
     results["messages"] = result.messages
-    if out is not None:
-        _write_json(results, out)
-        if write_figures:
-            results["figures"] = _write_figures(result, out, setup.robot)
-            _write_json(results, out)
     return result
 
 
@@ -278,8 +346,12 @@ def capped_message(selected: pd.DataFrame, params: Mapping[str, float]) -> str:
             f"(compare settings with --sensitivity, chapter 3)")
 
 
-def _write_json(results: dict[str, Any], out: Path) -> None:
-    (out / "results.json").write_text(json.dumps(results, indent=1, allow_nan=False) + "\n")
+def filter_message(selected: pd.DataFrame, lowpass: Lowpass) -> str:
+    """What the low-pass filter did, and how many selected trials SPARC read beyond its cut-off."""
+    beyond = int((selected["sparc_band_end_hz"] > lowpass.cutoff_hz).sum())
+    return (f"positions were low-pass filtered at {lowpass.cutoff_hz:.3g} Hz ({lowpass.chosen_by}; zero-lag "
+            f"Butterworth, filter in results.json); SPARC's band reaches above that cut-off in {beyond} of "
+            f"{len(selected)} selected trials, whose SPARC is partly the filter's (chapter 5)")
 
 
 def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
@@ -308,67 +380,3 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
     if run_.sensitivity is not None:
         keep(fg.plot_sparc_sensitivity(run_.sensitivity), "sparc_sensitivity")
     return written
-
-
-def summary_lines(run_: PipelineRun) -> list[str]:
-    """A short human summary of a run: counts, commonest reasons, k, prototypes, feasibility."""
-    f = run_.features
-    counts = f["status"].value_counts()
-    fs = run_.recordings.fs
-    rate = f"at {fs:.4g} Hz (from the time stamps)" if np.isfinite(fs) else "at an unknown sampling rate"
-    lines = [f"trials read: {len(f)} from {run_.results['dataset']['n_participants']} participant(s) {rate}",
-             (f"selected: {counts.get('selected', 0)}, excluded: {counts.get('excluded', 0)}, "
-              f"invalid: {counts.get('invalid', 0)}")]
-    for status in ("invalid", "excluded"):
-        reasons = Counter(reason_kind(r) for r in f.loc[f["status"] == status, "reason"])
-        if reasons:
-            top = "; ".join(f"{n} x {r}" for r, n in reasons.most_common(3))
-            lines.append(f"  commonest {status} reasons: {top}")
-    if run_.prototypes is not None:
-        fit = run_.prototypes
-        lines.append(f"k = {fit.k} clusters ({fit.scaling} features), average silhouette {fit.silhouette:.3f}")
-        for c, tr in zip(range(fit.k), run_.transfers):
-            p = {col: fit.prototypes.at[c, col] for col in fit.prototypes.columns}
-            verdict = "feasible" if tr.feasible else (
-                f"needs time scaling x{tr.time_scale:.2f}" if not tr.flags else f"{len(tr.flags)} flag(s)")
-            peak = f"{np.nanmax(tr.peak_abs_qd):.2f}" if np.isfinite(tr.peak_abs_qd).any() else "n/a"
-            lines.append(f"  cluster {c}: size {fit.sizes[c]}, prototype participant {p['participant']} trial "
-                         f"{p['trial']} (PV {p['pv']:.2f} m/s, SPARC {p['sparc']:.2f}); "
-                         f"peak |qd| {peak} rad/s, {verdict}")
-        n_ok = sum(tr.feasible for tr in run_.transfers)
-        lim = run_.transfers[0].qd_limits
-        lim_txt = f"{lim[0]:.3g} rad/s" if np.all(lim == lim[0]) else f"{', '.join(f'{v:.3g}' for v in lim)} rad/s"
-        lines.append(f"feasibility on {run_.transfers[0].robot} (joint velocity limits {lim_txt}): "
-                     f"{n_ok} of {fit.k} prototypes feasible as recorded")
-    if run_.sensitivity is not None:
-        sens = run_.sensitivity
-        lines.append(f"SPARC sensitivity, against this run's {sens.reference.label}:")
-        for label, c in sens.comparison().iterrows():
-            lines.append(f"  {label}: SPARC changed in {int(c['changed'])} of {int(c['of'])} selected trials (mean |change| "
-                         f"{c['mean |change|']:.3f}, SD across trials {c['reference SD']:.3f}); ARI {c['ARI']:.2f} "
-                         f"with this run's k = {sens.k} partition; {int(c['prototypes kept'])} of {sens.k} prototypes kept")
-    lines += [f"note: {m}" for m in run_.messages]
-    return lines
-
-
-#: Reasons whose numbers differ from trial to trial, and the kind they are counted as in the summary.
-_REASON_KINDS = (
-    (r"contact speed \S+ m/s (below|above) (\S+ m/s)", r"contact speed \1 \2"),
-    (r"sampled at ", "sampled at another rate than the file"),
-    (r"positions span ", f"positions span more than {MAX_RANGE_M:g} m"),
-    (r"in contact from sample ", "in contact from the start: no approach recorded"),
-)
-
-
-def reason_kind(reason: str) -> str:
-    """A trial's reason without its trial-specific parts (line numbers, values), so that like reasons are
-    counted together: ``"time goes backwards at line 12 (t = ...)"`` -> ``"time goes backwards"``."""
-    s = str(reason)
-    for pattern, kind in _REASON_KINDS:
-        m = re.match(pattern, s)
-        if m:
-            return m.expand(kind)
-    s = s.split(":")[0]
-    s = re.sub(r"\s*\([^)]*\d[^)]*\)", "", s)  # parentheses with numbers: "(3; need at least 5)"
-    s = re.sub(r"\s+at (line|row) \d+.*$", "", s)
-    return re.sub(r"[-+]?\d+(\.\d+)?(e[-+]?\d+)?", "N", s).strip()

@@ -35,10 +35,12 @@ Joint velocity limits (rad/s), the numbers the feasibility check compares with:
 """
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
-import roboticstoolbox as rtb
+
+if TYPE_CHECKING:  # roboticstoolbox takes about a second to import: only when an arm is built
+    import roboticstoolbox as rtb
 
 #: The paper's default dexterous pose of Simple6, deg (q1..q6).
 DEFAULT_POSE_DEG: tuple[float, ...] = (0.0, -60.0, 120.0, 90.0, -90.0, 30.0)
@@ -75,6 +77,8 @@ def simple6() -> rtb.DHRobot:
     original model (roboticstoolbox stores the default +-pi rad); named poses ``qz`` (zero) and
     ``qn`` (the paper's default dexterous pose, :data:`DEFAULT_POSE_DEG`).
     """
+    import roboticstoolbox as rtb
+
     links = [
         rtb.RevoluteDH(d=0.0, a=0.0, alpha=np.pi / 2),
         rtb.RevoluteDH(d=0.0, a=1.0, alpha=0.0),
@@ -118,6 +122,8 @@ def get_robot(name: str) -> RobotSetup:
     pseudo-inverse). The limits and poses are justified in the module docstring.
     Returns a :class:`RobotSetup` ``(robot, q0, qd_limits)``; raises ``ValueError`` for other names.
     """
+    import roboticstoolbox as rtb
+
     key = str(name).strip().lower()
     if key == "simple6":
         robot = simple6()

@@ -198,7 +198,8 @@ def sparc_sensitivity(recordings: Recordings | pd.DataFrame,
                       settings: Sequence[Mapping[str, float]] = DEFAULT_SETTINGS, *, k: int = pt.DEFAULT_K,
                       scaling: pt.Scaling = "raw", random_state: int = 0,
                       k_range: tuple[int, int] = pt.K_RANGE,
-                      reference: tuple[pd.DataFrame, pt.SilhouetteSweep | None] | None = None) -> SparcSensitivity:
+                      reference: tuple[pd.DataFrame, pt.SilhouetteSweep | None] | None = None,
+                      lowpass: Any = "auto") -> SparcSensitivity:
     """The clustering of the paper under each SPARC setting in ``settings`` (dicts of fc in Hz, amp_th,
     padlevel; missing keys take the book's defaults), compared with the first.
 
@@ -207,7 +208,8 @@ def sparc_sensitivity(recordings: Recordings | pd.DataFrame,
     shrink warnings are not repeated). ``scaling`` and ``random_state`` as in
     :func:`skilllib.prototypes.fit_prototypes`. ``reference``: the first setting's features and sweep when
     the caller has them already (the pipeline), computed with the same options; they are not recomputed.
-    Returns :class:`SparcSensitivity`.
+    ``lowpass``: the positions' filter (:func:`skilllib.features.trial_features`), the same for every
+    setting (the pipeline passes the one its run chose). Returns :class:`SparcSensitivity`.
     """
     if not settings:
         raise ValueError("no SPARC settings to compare")
@@ -221,7 +223,7 @@ def sparc_sensitivity(recordings: Recordings | pd.DataFrame,
                 k_used = min(k_used, int(sweep.ks[-1]))
             runs.append((p, feats, sweep))
             continue
-        feats = trial_features(recordings, sparc_params=p)
+        feats = trial_features(recordings, sparc_params=p, lowpass=lowpass)
         sel = select(feats)
         sweep = None
         try:
