@@ -44,7 +44,7 @@ from skilllib.transfer import transfer
 
 REL = 1e-12  # floats that pass through JSON (repr round-trips exactly; this only allows for rounding)
 FEATURES = ("pv", "contact_speed", "duration", "sparc", "sparc_band_end_hz", "ldlj")
-TRIAL_KEYS = {"participant", "trial", "status", "reason", *FEATURES, "sparc_capped"}
+TRIAL_KEYS = {"participant", "trial", "status", "reason", *FEATURES, "sparc_capped", "resampled"}
 FIGURES = ("features", "trials_by_participant", "participant_features", "sparc_vs_length", "silhouette_sweep",
            "silhouettes_k", "clusters_pv_sparc", "prototype_speed_profiles", "joint_velocities", "frame_mapping")
 #: The base file: 5 participants x 16 trials at 60 Hz; its 27 selected trials make k = 6 silhouette-valid
@@ -176,9 +176,9 @@ def check_trials(res: dict, d: Direct) -> None:
     for i, (entry, row) in enumerate(zip(res["trials"], f.to_dict(orient="records"))):
         what = f"trials[{i}] ({row['participant']}, {row['trial']})"
         assert set(entry) == TRIAL_KEYS, what
-        assert entry["participant"] == _py(row["participant"]), what
-        assert type(entry["participant"]) is type(_py(row["participant"])), what
-        assert entry["trial"] == row["trial"] and type(entry["trial"]) is int, what
+        assert entry["participant"] == row["participant"] and type(entry["participant"]) is str, what
+        assert entry["trial"] == row["trial"] and type(entry["trial"]) is str, what
+        assert entry["resampled"] is bool(row["resampled"]), what
         assert entry["status"] == row["status"], what
         if row["status"] == "selected":
             assert entry["reason"] is None, f"{what}: a selected trial's reason must be null"
@@ -222,7 +222,7 @@ def check_clustering(res: dict, d: Direct, k: int, scaling: str = "raw", random_
         proto = entry["prototype"]
         want_id = (_py(fit.prototypes.at[c, "participant"]), _py(fit.prototypes.at[c, "trial"]))
         assert (proto["participant"], proto["trial"]) == want_id, f"cluster {c}"
-        assert type(proto["participant"]) is type(want_id[0]) and type(proto["trial"]) is int
+        assert type(proto["participant"]) is str and type(proto["trial"]) is str
         _num(proto["pv"], fit.prototypes.at[c, "pv"], f"clusters[{c}].prototype.pv")
         _num(proto["sparc"], fit.prototypes.at[c, "sparc"], f"clusters[{c}].prototype.sparc")
         trial = by_id[want_id]  # the prototype is a selected trial with the features the run reports for it
@@ -608,9 +608,11 @@ def test_figures_are_written_only_when_asked_and_change_nothing_else(tmp_path, r
 
 # --- the command line: each flag reaches run() as its option -----------------------------------------
 
+NO_READ_OPTIONS = {"columns": None, "units": None, "up_axis": None, "marker": None, "contact_channel": None,
+                   "contact_height": None, "name_pattern": None}
 CLI_DEFAULTS = {"data": None, "k": pt.DEFAULT_K, "robot": "simple6", "qd_max": None, "scaling": "raw",
                 "random_state": 0, "fc": DEFAULT_FC, "amp_th": DEFAULT_AMP_TH, "padlevel": DEFAULT_PADLEVEL,
-                "sensitivity": None, "write_figures": True}
+                "sensitivity": None, "lowpass": "auto", "read_options": NO_READ_OPTIONS, "write_figures": True}
 
 
 CLI_CASES = [
@@ -628,6 +630,13 @@ CLI_CASES = [
     (["--sensitivity", "fc=10", "amp_th=0.1,padlevel=3"],
      {"sensitivity": [{"fc": 10.0}, {"amp_th": 0.1, "padlevel": 3}]}),
     (["--no-figures"], {"write_figures": False}),
+    (["--lowpass", "12"], {"lowpass": "12"}),
+    (["--lowpass", "none"], {"lowpass": "none"}),
+    (["--units", "mm", "--up-axis=-z", "--columns", "time=t,px=x"],
+     {"read_options": {**NO_READ_OPTIONS, "units": "mm", "up_axis": "-z", "columns": {"time": "t", "px": "x"}}}),
+    (["--marker", "tip", "--contact-channel", "fz", "--contact-height", "0.01", "--name-pattern", "(?P<trial>.*)"],
+     {"read_options": {**NO_READ_OPTIONS, "marker": "tip", "contact_channel": "fz", "contact_height": 0.01,
+                       "name_pattern": "(?P<trial>.*)"}}),
 ]
 
 

@@ -1,0 +1,54 @@
+"""The figures of the pipeline; the chapters draw the same ones.
+
+Every function takes data (arrays, DataFrames, result objects) and returns a matplotlib Figure;
+:func:`save` writes it as PNG and SVG. Axes carry units. One submodule per chapter's idea:
+``smoothness`` (SPARC), ``experiment`` (the data), ``clusters`` (prototypes), ``robot`` (transfer).
+This package may import the other skilllib modules; none of them imports it.
+"""
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+
+from ._common import CLUSTER_COLORS, save
+from .clusters import (
+    plot_cluster_participants,
+    plot_clusters,
+    plot_prototype_profiles,
+    plot_silhouette_sweep,
+    plot_silhouettes,
+    plot_sparc_sensitivity,
+    plot_stability,
+)
+from .experiment import (
+    PARTICIPANT_COLORS,
+    plot_contact_speeds,
+    plot_estimates_vs_truth,
+    plot_feature_overview,
+    plot_feature_space,
+    plot_participant_features,
+    plot_segmentation,
+    plot_sparc_vs_length,
+    plot_trials_by_participant,
+    threshold_bound,
+)
+from .robot import (
+    JOINT_COLORS,
+    plot_frame_mapping,
+    plot_joint_velocities,
+    plot_robot_joints,
+    plot_robot_pose,
+    plot_simple6_figure,
+    plot_start_poses,
+)
+from .smoothness import plot_sparc_against, plot_sparc_spectra, plot_speeds_and_spectra
+
+__all__ = [
+    "plt", "save", "CLUSTER_COLORS", "PARTICIPANT_COLORS", "JOINT_COLORS",
+    "plot_sparc_spectra", "plot_speeds_and_spectra", "plot_sparc_against",
+    "plot_trials_by_participant", "plot_segmentation", "plot_participant_features", "plot_contact_speeds",
+    "plot_feature_space", "plot_feature_overview", "plot_estimates_vs_truth", "plot_sparc_vs_length",
+    "threshold_bound", "plot_silhouette_sweep", "plot_silhouettes", "plot_clusters", "plot_prototype_profiles",
+    "plot_stability", "plot_sparc_sensitivity", "plot_cluster_participants",
+    "plot_robot_joints", "plot_robot_pose", "plot_simple6_figure", "plot_start_poses",
+    "plot_joint_velocities", "plot_frame_mapping",
+]

@@ -1,0 +1,166 @@
+"""Figures of the clustering chapter: silhouette sweep, silhouette plots, clusters, prototypes."""
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from ..prototypes import PrototypeResult, SilhouetteSweep
+from ..sensitivity import SparcSensitivity
+from ._common import CLUSTER_COLORS
+
+
+def _cluster_color(c: int) -> tuple[float, float, float]:
+    """Colour of cluster ``c``; CLUSTER_COLORS repeats beyond its length (k > 10)."""
+    return CLUSTER_COLORS[int(c) % len(CLUSTER_COLORS)]
+
+
+def plot_silhouette_sweep(sweep: SilhouetteSweep, chosen_k: int | None = None) -> plt.Figure:
+    """Average silhouette (Rousseeuw 1987) against k; filled markers = valid k (average > 0 and every
+    cluster has a trial above the average, as in scikit-learn's silhouette example), open = not valid."""
+    ks, scores = sweep.ks, sweep.scores
+    valid = np.array([sweep.results[k].valid for k in ks])
+    fig, ax = plt.subplots(figsize=(5.5, 3.4))
+    ax.plot(ks, scores, color="0.6", lw=1, zorder=1)
+    ax.scatter(ks[valid], scores[valid], color="k", zorder=2, label="valid")
+    ax.scatter(ks[~valid], scores[~valid], facecolor="white", edgecolor="k", zorder=2,
+               label="not valid: a cluster lies wholly below the average")
+    if chosen_k is not None and chosen_k in sweep.results:
+        ax.axvline(chosen_k, color=CLUSTER_COLORS[3], ls="--", lw=1,
+                   label=f"k = {chosen_k} (average {sweep.results[chosen_k].silhouette:.3f})")
+    ax.set_xticks(ks)
+    ax.set_xlabel("number of clusters k")
+    ax.set_ylabel("average silhouette")
+    ax.legend(fontsize="small", frameon=False)
+    return fig
+
+
+def plot_silhouettes(result: PrototypeResult) -> plt.Figure:
+    """Silhouette plot ("knife plot", as in scikit-learn's example) of one clustering: each cluster's
+    trial silhouettes sorted, the average as a dashed line; clusters marked * lie wholly below it."""
+    s, labels, avg = result.silhouette_samples, result.labels, result.silhouette
+    failing = set(result.failing_clusters())
+    gap = max(2, len(s) // 60)
+    fig, ax = plt.subplots(figsize=(5, 3 + 0.1 * result.k))
+    y0 = gap
+    for c in range(result.k):
+        sc = np.sort(s[labels == c])
+        ax.fill_betweenx(np.arange(y0, y0 + len(sc)), 0, sc, color=_cluster_color(c), lw=0)
+        ax.text(-0.02, y0 + len(sc) / 2, f"{c}*" if c in failing else str(c), ha="right", va="center",
+                fontsize="small" if result.k <= 10 else "x-small")
+        y0 += len(sc) + gap
+    ax.axvline(avg, color="k", ls="--", lw=1)
+    ax.axvline(0, color="0.5", lw=0.5)
+    ax.set_xlim(min(-0.1, float(s.min()) - 0.05), 1)
+    ax.set_ylim(0, y0)
+    ax.set_yticks([])
+    ax.set_xlabel("silhouette coefficient")
+    ax.set_ylabel("trials, by cluster (0 = lowest PV)")
+    note = "; * no trial above it" if failing else ""
+    ax.set_title(f"k = {result.k} ({result.method}, {result.scaling} features): "
+                 f"average {avg:.3f} (dashed){note}", fontsize="small")
+    return fig
+
+
+def plot_clusters(result: PrototypeResult) -> plt.Figure:
+    """PV-SPARC tuples coloured by cluster, with the centres (x) and the prototype trials (circled):
+    the paper's Fig. 2a, clusters numbered by centre PV."""
+    d = result.data
+    fig, ax = plt.subplots(figsize=(5.5, 4))
+    for c in range(result.k):
+        m = d["cluster"].to_numpy() == c
+        ax.scatter(d.loc[m, "pv"], d.loc[m, "sparc"], s=10, alpha=0.6, color=_cluster_color(c), lw=0,
+                   label=f"cluster {c} (n = {int(result.sizes[c])})")
+    ax.scatter(result.centres["pv"], result.centres["sparc"], marker="X", s=90, color="k",
+               edgecolor="white", lw=0.8, label="centre", zorder=3)
+    ax.scatter(result.prototypes["pv"], result.prototypes["sparc"], marker="o", s=110, facecolor="none",
+               edgecolor="k", lw=1.5, label="prototype (trial nearest the centre)", zorder=4)
+    ax.set_xlabel("peak speed PV (m/s)")
+    ax.set_ylabel("SPARC")
+    ax.legend(fontsize="x-small", frameon=False, loc="center left", bbox_to_anchor=(1.01, 0.5))
+    return fig
+
+
+def plot_prototype_profiles(profiles: list[tuple[np.ndarray, np.ndarray]], prototypes: pd.DataFrame,
+                            ) -> plt.Figure:
+    """Speed profiles of the prototypes labelled with their PV and SPARC: the paper's Fig. 2b.
+
+    ``profiles[i]`` is (t in s, speed in m/s) of the prototype of cluster i, in the row order of
+    ``prototypes`` (``PrototypeResult.prototypes``: columns pv, sparc; index = cluster id).
+    """
+    if len(profiles) != len(prototypes):
+        raise ValueError(f"{len(profiles)} speed profiles for {len(prototypes)} prototypes")
+    fig, ax = plt.subplots(figsize=(5.5, 3.6))
+    for (c, p), (t, v) in zip(prototypes.iterrows(), profiles):
+        ax.plot(np.asarray(t), np.asarray(v), color=_cluster_color(c), lw=1.6,
+                label=f"cluster {c}: PV = {p['pv']:.2f} m/s, SPARC = {p['sparc']:.2f}")
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("speed (m/s)")
+    ax.set_ylim(bottom=0)
+    ax.legend(fontsize="x-small", frameon=False)
+    return fig
+
+
+def plot_stability(ari: dict[str, np.ndarray], seed: int = 0) -> plt.Figure:
+    """Adjusted Rand indices (dimensionless, 1 = same partition) as one jittered strip per entry of
+    ``ari`` (e.g. refits with other seeds or on bootstrap resamples, see
+    :func:`skilllib.prototypes.seed_stability` and :func:`~skilllib.prototypes.bootstrap_stability`),
+    each with its median as a black bar. ``", "`` in a name becomes a line break; ``seed`` fixes the jitter.
+    """
+    if not ari:
+        raise ValueError("no ARI series to plot")
+    fig, ax = plt.subplots(figsize=(7, 3.4))
+    jitter = np.random.default_rng(seed)
+    for i, a in enumerate(np.asarray(v, dtype=float) for v in ari.values()):
+        ax.scatter(i + jitter.uniform(-0.15, 0.15, a.size), a, s=14, alpha=0.7, color="C0")
+        ax.hlines(np.median(a), i - 0.3, i + 0.3, color="k", lw=1.5)
+    ax.set_xticks(range(len(ari)), [n.replace(", ", "\n") for n in ari], fontsize="small")
+    ax.set_ylabel("adjusted Rand index")
+    ax.set_ylim(top=1.02)
+    return fig
+
+
+def plot_sparc_sensitivity(sens: SparcSensitivity) -> plt.Figure:
+    """Left: each selected trial's SPARC under every other setting against the reference setting
+    (identity dashed; trials whose band that setting's fc ended drawn as rings). Right: average silhouette
+    against k under every setting. ``sens``: :func:`skilllib.sensitivity.sparc_sensitivity`."""
+    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained")
+    ref = sens.reference.selected["sparc"].to_numpy()
+    for i, run in enumerate(sens.runs[1:], start=1):
+        y = run.selected["sparc"].to_numpy()
+        cap = run.selected["sparc_capped"].to_numpy(dtype=bool)
+        a.scatter(ref[~cap], y[~cap], s=6, color=_cluster_color(i), label=f"{run.label}: band ended by amp_th")
+        a.scatter(ref[cap], y[cap], s=12, facecolor="none", edgecolor=_cluster_color(i), lw=0.7,
+                  label=f"{run.label}: band ended by fc ({int(cap.sum())})")
+    lo = min(ref.min(), *(r.selected["sparc"].min() for r in sens.runs))
+    hi = max(ref.max(), *(r.selected["sparc"].max() for r in sens.runs))
+    a.plot([lo, hi], [lo, hi], "--", color="0.4", lw=0.8)
+    a.set_xlabel(f"SPARC, {sens.reference.label}")
+    a.set_ylabel("SPARC, other setting")
+    a.legend(fontsize=7, frameon=False, loc="lower right")
+    for i, run in enumerate(sens.runs):
+        if run.sweep is not None:
+            b.plot(run.sweep.ks, run.sweep.scores, "o-", ms=3, color=_cluster_color(i), label=run.label)
+    b.axvline(sens.k, color="0.5", ls=":", lw=1)
+    b.set_xlabel("number of clusters k")
+    b.set_ylabel("average silhouette")
+    b.legend(fontsize=7, frameon=False)
+    return fig
+
+
+def plot_cluster_participants(table: pd.DataFrame) -> plt.Figure:
+    """Trials per cluster (rows, 0 = lowest centre PV) and participant (columns) as a heat map with the
+    counts written in; ``table`` as :func:`skilllib.participants.cluster_participant_table` (its ``all``
+    totals are left out)."""
+    t = table.drop(index="all", columns="all", errors="ignore")
+    fig, ax = plt.subplots(figsize=(1.2 + 0.55 * t.shape[1], 0.9 + 0.45 * t.shape[0]), layout="constrained")
+    im = ax.imshow(t.to_numpy(), cmap="Greys", aspect="auto")
+    vmax = t.to_numpy().max()
+    for (i, j), n in np.ndenumerate(t.to_numpy()):
+        ax.text(j, i, str(n), ha="center", va="center", fontsize=7, color="white" if n > 0.6 * vmax else "black")
+    ax.set_xticks(range(t.shape[1]), [str(c) for c in t.columns])
+    ax.set_yticks(range(t.shape[0]), [str(r) for r in t.index])
+    ax.set_xlabel("participant")
+    ax.set_ylabel("cluster (0 = lowest centre PV)")
+    fig.colorbar(im, ax=ax, label="trials", shrink=0.8)
+    return fig

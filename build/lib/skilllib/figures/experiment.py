@@ -1,0 +1,238 @@
+"""Figures of the experiment and its data: trajectories, segmentation, per-participant features."""
+from __future__ import annotations
+
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+from matplotlib.collections import LineCollection
+
+from ..data import Recordings
+from ..features import CONTACT_WINDOW, ONSET_SPEED, velocity
+from ..smoothness import DEFAULT_AMP_TH
+
+#: Colours of the participants (in sorted participant order): tab10 with its grey replaced by black,
+#: because grey marks excluded trials.
+PARTICIPANT_COLORS = tuple((0.0, 0.0, 0.0) if i == 7 else c for i, c in enumerate(plt.get_cmap("tab10").colors))
+
+
+def _plabel(p: Any) -> str:
+    """Short label of participant ``p``: "P3" for a number, the id itself for a name ("P03", "anna")."""
+    return f"P{p}" if isinstance(p, (int, np.integer)) else str(p)
+
+
+def _pcolor(participants: list, p) -> tuple[float, float, float]:
+    return PARTICIPANT_COLORS[list(participants).index(p) % len(PARTICIPANT_COLORS)]
+
+
+def _approach(rec: Recordings, p, tr) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+    """t (s), y (m) of the whole trial, speed (m/s) before contact (as the features), contact index."""
+    d = rec.trial(p, tr)
+    c = int(np.flatnonzero(d.contact)[0])
+    return d.t, d.pos[:, 1], np.linalg.norm(velocity(d.pos[:c], rec.fs), axis=1), c
+
+
+def plot_trials_by_participant(recordings: Recordings, features: pd.DataFrame,
+                               window: tuple[float, float] = (-0.9, 0.3)) -> plt.Figure:
+    """The paper's Fig. 1b redrawn: vertical position y (m) and speed (m/s, approach only) of every valid
+    trial against time from contact (s), one column per participant (two rows of participants).
+    Selected trials in the participant's colour, excluded ones in grey."""
+    f = features[features["status"] != "invalid"]
+    parts = sorted(f["participant"].unique())
+    ncol = int(np.ceil(len(parts) / 2))
+    fig, axs = plt.subplots(4, ncol, figsize=(2.1 * ncol, 7.2), sharex=True, sharey="row", squeeze=False)
+    for i, p in enumerate(parts):
+        ay, av = axs[2 * (i // ncol), i % ncol], axs[2 * (i // ncol) + 1, i % ncol]
+        lines = {"y": {True: [], False: []}, "v": {True: [], False: []}}
+        for tr, status in f.loc[f["participant"] == p, ["trial", "status"]].itertuples(index=False):
+            t, y, v, c = _approach(recordings, p, tr)
+            tt = t - t[c]
+            keep = (tt >= window[0]) & (tt <= window[1])
+            sel = status == "selected"
+            lines["y"][sel].append(np.column_stack([tt[keep], y[keep]]))
+            kv = keep[:c]
+            lines["v"][sel].append(np.column_stack([tt[:c][kv], v[kv]]))
+        for ax, key in ((ay, "y"), (av, "v")):
+            ax.add_collection(LineCollection(lines[key][False], colors="0.75", lw=0.4))
+            ax.add_collection(LineCollection(lines[key][True], colors=[_pcolor(parts, p)], lw=0.5, alpha=0.6))
+            ax.autoscale_view()
+            ax.axvline(0, color="k", lw=0.5, ls=":")
+        ay.set_title(f"participant {p}", fontsize=9)
+    for r in (1, 3):
+        axs[r, 0].set_ylim(0, None)
+    for r in range(4):
+        axs[r, 0].set_ylabel("y (m)" if r % 2 == 0 else "speed (m/s)")
+    for ax in axs[-1]:
+        ax.set_xlabel("time from contact (s)")
+    for i in range(len(parts), 2 * ncol):  # odd number of participants: hide the spare column
+        axs[2 * (i // ncol), i % ncol].axis("off")
+        axs[2 * (i // ncol) + 1, i % ncol].axis("off")
+    fig.tight_layout()
+    return fig
+
+
+def plot_segmentation(recordings: Recordings, features: pd.DataFrame, keys: list[tuple]) -> plt.Figure:
+    """Onset/contact segmentation of example trials: y (m) and approach speed (m/s) against time (s); the
+    onset threshold, the onset sample, the last sample before contact (the contact speed), the first
+    contact sample and the segment (shaded). One legend for all panels; the contact speed in the titles."""
+    fig, axs = plt.subplots(2, len(keys), figsize=(2.6 * len(keys), 5.0), sharex="col", squeeze=False)
+    idx = features.set_index(["participant", "trial"])
+    for j, (p, tr) in enumerate(keys):
+        row = idx.loc[(p, tr)]
+        t, y, v, c = _approach(recordings, p, tr)
+        ay, av = axs[0, j], axs[1, j]
+        ay.plot(t, y, ".-", ms=3, lw=0.8, color="0.3")
+        av.plot(t[:c], v, ".-", ms=3, lw=0.8, color="0.3")
+        av.axhline(ONSET_SPEED, color="tab:orange", lw=0.8, ls="--", label=f"onset threshold {ONSET_SPEED:g} m/s")
+        title = f"{_plabel(p)} T{tr}: {row['status']}"
+        if row["status"] != "invalid":
+            o = round((row["t_onset"] - t[0]) * recordings.fs)
+            for ax in (ay, av):
+                ax.axvspan(t[o], t[c - 1], color="tab:blue", alpha=0.12, lw=0, label="segment" if ax is av else None)
+            av.plot(t[o], v[o], "o", color="tab:orange", ms=5, label="onset")
+            av.plot(t[c - 1], v[c - 1], "s", color="tab:red", ms=5, label="last sample before contact")
+            title += f"\ncontact speed {row['contact_speed']:.2f} m/s"
+        for ax in (ay, av):
+            ax.axvline(t[c], color="tab:red", lw=0.8, ls=":", label="first contact sample" if ax is av else None)
+        ay.set_title(title, fontsize=9)
+        av.set_xlabel("time (s)")
+    axs[0, 0].set_ylabel("y (m)")
+    axs[1, 0].set_ylabel("speed (m/s)")
+    handles, labels = axs[1, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 5), frameon=False, fontsize=8.5)
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    return fig
+
+
+def plot_participant_features(features: pd.DataFrame) -> plt.Figure:
+    """Per participant, peak speed (m/s), contact speed (m/s, the selection window shaded), duration (s)
+    and SPARC of every valid trial (box: quartiles; points: trials, selected in colour)."""
+    f = features[features["status"] != "invalid"]
+    parts = sorted(f["participant"].unique())
+    cols = [("pv", "peak speed PV (m/s)"), ("contact_speed", "contact speed (m/s)"),
+            ("duration", "duration onset-contact (s)"), ("sparc", "SPARC")]
+    fig, axs = plt.subplots(len(cols), 1, figsize=(7.5, 8), sharex=True)
+    rng = np.random.default_rng(0)  # horizontal jitter of the points only
+    for ax, (c, label) in zip(axs, cols):
+        data = [f.loc[f["participant"] == p, c].to_numpy() for p in parts]
+        ax.boxplot(data, positions=range(len(parts)), widths=0.5, showfliers=False,
+                   medianprops={"color": "k"})
+        for i, p in enumerate(parts):
+            g = f[f["participant"] == p]
+            x = i + rng.uniform(-0.18, 0.18, len(g))
+            sel = (g["status"] == "selected").to_numpy()
+            ax.scatter(x[~sel], g[c].to_numpy()[~sel], s=3, color="0.7", zorder=2)
+            ax.scatter(x[sel], g[c].to_numpy()[sel], s=3, color=_pcolor(parts, p), zorder=3)
+        ax.set_ylabel(label, fontsize=8)
+        if c == "contact_speed":
+            ax.axhspan(*CONTACT_WINDOW, color="tab:green", alpha=0.12, lw=0)
+    axs[-1].set_xticks(range(len(parts)), [str(p) for p in parts])
+    axs[-1].set_xlabel("participant")
+    fig.tight_layout()
+    return fig
+
+
+def plot_contact_speeds(features: pd.DataFrame, bin_width: float = 0.05, ax: plt.Axes | None = None) -> plt.Figure:
+    """Histogram of contact speeds (m/s) of the valid trials; the selection window shaded."""
+    v = features.loc[features["status"] != "invalid", "contact_speed"].to_numpy()
+    n_sel = int((features["status"] == "selected").sum())
+    fig, ax = plt.subplots(figsize=(5.5, 3.2)) if ax is None else (ax.figure, ax)
+    ax.hist(v, bins=np.arange(0, v.max() + bin_width, bin_width), color="0.55")
+    ax.axvspan(*CONTACT_WINDOW, color="tab:green", alpha=0.15, lw=0,
+               label=f"selected: {CONTACT_WINDOW[0]:g}-{CONTACT_WINDOW[1]:g} m/s ({n_sel} trials)")
+    ax.set_xlabel("contact speed (m/s)")
+    ax.set_ylabel("trials")
+    ax.legend(frameon=False, fontsize=8)
+    return fig
+
+
+def threshold_bound(amp_th: float = DEFAULT_AMP_TH) -> float:
+    """About the highest SPARC a band ended by the amplitude threshold can have: the chord from (0, 1) to
+    (1, amp_th), -sqrt(1 + (1 - amp_th)**2) (chapter 1). Higher values come from bands capped by fc."""
+    return -float(np.hypot(1.0, 1.0 - amp_th))
+
+
+def _mark_capped(ax: plt.Axes, f: pd.DataFrame, x: str, amp_th: float) -> None:
+    """Ring the trials whose SPARC band fc ended and draw the threshold-ended bound (dashed)."""
+    if "sparc_capped" in f.columns:
+        cap = f[f["sparc_capped"].fillna(False).astype(bool)]
+        ax.scatter(cap[x], cap["sparc"], s=16, facecolor="none", edgecolor="k", lw=0.5,
+                   label=f"band ended by fc ({len(cap)})", zorder=4)
+    ax.axhline(threshold_bound(amp_th), color="0.3", ls="--", lw=0.8,
+               label=f"highest SPARC of a band ended by amp_th = {amp_th:g}")
+
+
+def plot_feature_space(features: pd.DataFrame, ax: plt.Axes | None = None,
+                       amp_th: float = DEFAULT_AMP_TH) -> plt.Figure:
+    """Peak speed PV (m/s) against SPARC: selected trials coloured by participant, excluded in grey;
+    trials whose SPARC band the maximum cut-off fc ended (``sparc_capped``) ringed, and the dashed line
+    :func:`threshold_bound` above which only such trials can lie."""
+    f = features[features["status"] != "invalid"]
+    parts = sorted(f["participant"].unique())
+    fig, ax = plt.subplots(figsize=(6, 4)) if ax is None else (ax.figure, ax)
+    ex = f[f["status"] == "excluded"]
+    ax.scatter(ex["pv"], ex["sparc"], s=4, color="0.8", label="excluded")
+    for p in parts:
+        g = f[(f["participant"] == p) & (f["status"] == "selected")]
+        ax.scatter(g["pv"], g["sparc"], s=6, color=_pcolor(parts, p), label=_plabel(p))
+    _mark_capped(ax, f, "pv", amp_th)
+    ax.set_xlabel("peak speed PV (m/s)")
+    ax.set_ylabel("SPARC")
+    ax.legend(fontsize=6.5, frameon=False, ncol=2, loc="upper left", bbox_to_anchor=(1.01, 1), markerscale=2)
+    return fig
+
+
+def plot_sparc_vs_length(features: pd.DataFrame, fs: float, amp_th: float = DEFAULT_AMP_TH) -> plt.Figure:
+    """Left: SPARC of every valid trial against its segment length N in samples (top axis: the duration
+    N / fs in s); selected trials blue, excluded grey, bands ended by fc ringed, the threshold-ended bound
+    dashed. Right: the share of bands ended by fc at each N (bars; valid trials), with the number of
+    trials at each N."""
+    f = features[features["status"] != "invalid"]
+    sel = (f["status"] == "selected").to_numpy()
+    n = f["n"].astype(float).to_numpy()
+    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained", width_ratios=(3, 2))
+    g = f.assign(_x=n + np.random.default_rng(0).uniform(-0.25, 0.25, len(f)))  # jitter the integers
+    a.scatter(g.loc[~sel, "_x"], g.loc[~sel, "sparc"], s=4, color="0.75", label="excluded")
+    a.scatter(g.loc[sel, "_x"], g.loc[sel, "sparc"], s=5, color="C0", label="selected")
+    _mark_capped(a, g, "_x", amp_th)
+    a.set_xlabel(f"segment length N (samples at {fs:g} Hz, jittered)")
+    a.set_ylabel("SPARC")
+    top = a.secondary_xaxis("top", functions=(lambda x: x / fs, lambda d: d * fs))
+    top.set_xlabel("duration N / fs (s)")
+    a.legend(fontsize=7, frameon=False, loc="lower left")
+    if "sparc_capped" in f.columns:
+        share = f.assign(_c=f["sparc_capped"].astype(float)).groupby(n)["_c"].agg(["mean", "size"])
+        b.bar(share.index, share["mean"], width=0.8, color="0.5")
+        for x, (m, k) in share.iterrows():
+            b.text(x, m + 0.02, str(int(k)), ha="center", va="bottom", fontsize=5.5, rotation=90)
+        b.set_ylim(0, 1.15)
+        b.set_xlabel("segment length N (samples)")
+        b.set_ylabel("share of bands ended by fc")
+    return fig
+
+
+def plot_feature_overview(features: pd.DataFrame, amp_th: float = DEFAULT_AMP_TH) -> plt.Figure:
+    """The pipeline's features figure: contact-speed histogram with the selection window (m/s) and
+    PV (m/s) against SPARC of the valid trials (:func:`plot_feature_space`)."""
+    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 3.8))
+    plot_contact_speeds(features, ax=a)
+    plot_feature_space(features, ax=b, amp_th=amp_th)
+    fig.tight_layout()
+    return fig
+
+
+def plot_estimates_vs_truth(features: pd.DataFrame, truth: pd.DataFrame) -> plt.Figure:
+    """Features estimated from the 60 Hz samples against the generator's noise-free truth: peak speed,
+    contact speed (m/s) and duration (s); the identity line dashed."""
+    m = features[features["status"] != "invalid"].merge(truth, on=["participant", "trial"], suffixes=("", "_true"))
+    m = m.assign(duration_true=m["t_contact_true"] - m["t_onset_true"])
+    fig, axs = plt.subplots(1, 3, figsize=(10, 3.3))
+    for ax, (c, label) in zip(axs, [("pv", "PV (m/s)"), ("contact_speed", "contact speed (m/s)"),
+                                    ("duration", "duration (s)")]):
+        ax.scatter(m[f"{c}_true"], m[c], s=3, color="0.35")
+        lim = [0, max(m[c].max(), m[f"{c}_true"].max()) * 1.05]
+        ax.plot(lim, lim, "--", color="tab:red", lw=0.8)
+        ax.set(xlim=lim, ylim=lim, xlabel=f"true {label}", ylabel=f"estimated {label}")
+    fig.tight_layout()
+    return fig

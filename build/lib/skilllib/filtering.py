@@ -1,0 +1,239 @@
+"""Low-pass filtering of positions before they are differentiated: zero-lag Butterworth, Winter's rule.
+
+Tracker noise is white in position; differentiating it multiplies it by the frequency, so a speed taken
+from raw positions of optical or VR trackers (0.1-1 mm RMS at 100-250 Hz) is noisy enough to cross the
+paper's 0.05 m/s onset threshold at rest. Biomechanics therefore low-pass filters positions first
+(Winter 2009, *Biomechanics and Motor Control of Human Movement*, 4th ed., sec. 2.2.4):
+
+* **The filter.** A Butterworth low-pass of order :data:`ORDER` (2), run forwards and backwards
+  (``scipy.signal.butter(..., output="sos")`` and ``sosfiltfilt``): no phase lag, and order 4 in effect.
+  Running it twice squares its gain, so its -3 dB point moves down. **The cut-off this module names is the
+  -3 dB frequency of the whole forward-backward filter**; the single pass is designed at
+  ``cutoff / C`` with Winter's correction ``C = (2**(1/passes) - 1)**(1/(2 order))`` (0.802 for order 2,
+  two passes), :func:`design_frequency`.
+* **Winter's residual analysis** chooses the cut-off from the data (:func:`residual_analysis`): the RMS
+  residual between raw and filtered positions, R(f), falls as the cut-off f rises; above the movement's
+  band it is noise only and falls linearly to 0 at the Nyquist frequency. The straight line fitted to
+  that part (cut-offs from :data:`NOISE_FIT_RANGE` of the Nyquist frequency) meets f = 0 at the noise's
+  RMS amplitude a; the cut-off is the lowest f with R(f) <= a, where the signal distortion left equals the
+  noise let through.
+* **When to filter.** ``"auto"`` (the default) filters only when it is needed: when the position noise a
+  of Winter's analysis, differentiated over the pipeline's window, gives a 3-D speed noise (RMS) above
+  :data:`SPEED_NOISE_LIMIT` (5 mm/s, a tenth of the onset threshold; the SPARC chapter shows that speed
+  noise of 1-3 % of the peak speed leaves SPARC unchanged). The book's 60 Hz cohort (0.03 mm, about
+  2 mm/s) is therefore not filtered, and its results are those of the paper's procedure. A number
+  filters at that cut-off; ``"none"`` never filters.
+
+Only the samples before contact are filtered (the approach; the impact is a velocity step that a filter
+would smear into it), each end extended by odd reflection about a straight line fitted to the samples
+there (:func:`_extend`), not about the raw end sample as scipy's default does, whose noise the filter
+would otherwise keep as a step at the first sample.
+What filtering does to SPARC is shown in chapter 5: it removes spectrum above the cut-off, and a band
+that SPARC reads beyond the cut-off is partly the filter's (the pipeline counts those trials).
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from scipy.signal import butter, freqz, savgol_coeffs, sosfiltfilt, sosfreqz
+
+ORDER = 2  #: Butterworth order of one pass (two passes: order 4, zero lag)
+PASSES = 2  #: forwards and backwards
+SPEED_NOISE_LIMIT = 0.005  #: m/s, 3-D speed noise (RMS) above which "auto" filters
+NOISE_FIT_RANGE = (0.5, 0.9)  #: fractions of the Nyquist frequency where the residual is fitted as noise
+MIN_CUTOFF_HZ = 2.0  #: the lowest cut-off the residual analysis proposes (Hz)
+RESIDUAL_TRIALS = 100  #: trials the residual analysis looks at (evenly spaced over the file, deterministic)
+END_FIT_S = 0.05  #: s, samples at each end a straight line is fitted to, to extend the signal (:func:`_extend`)
+N_CUTOFFS = 60  #: cut-offs the residual analysis scans
+LOWPASS_CHOICES = ("auto", "none")
+
+
+def design_frequency(cutoff_hz: float, order: int = ORDER, passes: int = PASSES) -> float:
+    """The single-pass Butterworth design frequency (Hz) whose ``passes``-fold application has its -3 dB
+    point at ``cutoff_hz``: ``cutoff / C``, ``C = (2**(1/passes) - 1)**(1/(2 order))`` (Winter 2009)."""
+    return cutoff_hz / (2 ** (1 / passes) - 1) ** (1 / (2 * order))
+
+
+def _extend(x: np.ndarray, n_pad: int, n_fit: int) -> np.ndarray:
+    """``x`` (N, m) with ``n_pad`` samples added at each end by odd reflection about the value, at that end,
+    of a straight line fitted to the ``n_fit`` samples there. Reflecting about the raw end sample (scipy's
+    ``padtype="odd"``) would pin the filtered signal to that sample's noise: a step at the first sample of
+    a noisy recording that the derivative turns into a false movement onset. The fitted line keeps the
+    end's slope (the approach still moves at contact) without its noise."""
+    n = len(x)
+    k = max(2, min(n_fit, n))
+    tt = np.arange(k, dtype=float)
+    a0 = np.polyfit(tt, x[:k], 1)  # (2, m): slope, intercept
+    a1 = np.polyfit(tt, x[n - k:], 1)
+    first = a0[1]
+    last = a1[0] * (k - 1) + a1[1]
+    head = 2 * first - x[n_pad:0:-1]
+    tail = 2 * last - x[n - 2:n - 2 - n_pad:-1]
+    return np.concatenate([head, x, tail])
+
+
+def butterworth_lowpass(pos: np.ndarray, fs: float, cutoff_hz: float, order: int = ORDER) -> np.ndarray:
+    """Positions (N, ...) low-pass filtered along axis 0 with a zero-lag Butterworth filter whose
+    forward-backward -3 dB frequency is ``cutoff_hz`` (Hz; the design frequency below ``fs / 2``).
+
+    The ends are extended by :func:`_extend` over about two periods of the design frequency (at most
+    N - 1 samples), with lines fitted to :data:`END_FIT_S` of samples, so that the filter's start-up
+    transient falls outside the recording."""
+    fd = design_frequency(cutoff_hz, order)
+    if not 0 < fd < fs / 2:
+        raise ValueError(f"a low-pass cut-off of {cutoff_hz:g} Hz (designed at {fd:.3g} Hz) needs a sampling rate "
+                         f"above {2 * fd:.3g} Hz; these recordings are sampled at {fs:g} Hz")
+    sos = butter(order, fd, btype="low", fs=fs, output="sos")
+    pos = np.asarray(pos, dtype=float)
+    shape = pos.shape
+    x = pos.reshape(len(pos), -1)
+    n_pad = min(len(x) - 1, int(np.ceil(2 * fs / fd)))
+    n_fit = max(3, int(round(END_FIT_S * fs)))
+    y = sosfiltfilt(sos, _extend(x, n_pad, n_fit), axis=0, padtype=None)
+    return y[n_pad:n_pad + len(x)].reshape(shape)
+
+
+def speed_noise(position_noise_m: float, fs: float, window: int, cutoff_hz: float | None = None,
+                order: int = ORDER) -> float:
+    """3-D speed noise (RMS, m/s) that white position noise (RMS ``position_noise_m`` m per axis) has after
+    the zero-lag low-pass at ``cutoff_hz`` (None: no filter) and the Savitzky-Golay derivative (quadratic,
+    ``window`` samples) at ``fs`` Hz: sqrt(3) x the per-axis SD, from the combined gain by Parseval's
+    theorem, var = noise**2 x mean over 0..fs/2 of |D(f)|**2 |H(f)|**(2 passes)."""
+    f = np.linspace(0, fs / 2, 4097)
+    _, d = freqz(savgol_coeffs(window, 2, deriv=1, delta=1.0 / fs, use="dot"), worN=f, fs=fs)
+    gain = np.abs(d) ** 2
+    if cutoff_hz is not None:
+        _, h = sosfreqz(butter(order, design_frequency(cutoff_hz, order), fs=fs, output="sos"), worN=f, fs=fs)
+        gain = gain * np.abs(h) ** (2 * PASSES)
+    return float(np.sqrt(3) * position_noise_m * np.sqrt(np.trapezoid(gain, f) / (fs / 2)))
+
+
+def max_cutoff(fs: float, order: int = ORDER) -> float:
+    """The highest cut-off (Hz) the zero-lag filter can have at ``fs`` (design frequency just below Nyquist)."""
+    return fs / 2 * (2 ** (1 / PASSES) - 1) ** (1 / (2 * order)) * 0.99
+
+
+@dataclass(frozen=True)
+class ResidualAnalysis:
+    """Winter's residual analysis: ``cutoffs`` (Hz), ``residual`` (m, RMS over the positions),
+    ``noise_m`` (the fitted line's value at 0 Hz: the noise's RMS, m), ``slope`` (m/Hz) and ``cutoff_hz``
+    (the lowest cut-off with residual <= noise; None when the residual never falls that low)."""
+
+    cutoffs: np.ndarray
+    residual: np.ndarray
+    noise_m: float
+    slope: float
+    cutoff_hz: float | None
+
+
+def residual_analysis(approaches: Sequence[np.ndarray], fs: float) -> ResidualAnalysis:
+    """Winter's residual analysis over some trials' positions (each (N, 3), m) sampled at ``fs`` Hz.
+
+    Scans :data:`N_CUTOFFS` cut-offs evenly from :data:`MIN_CUTOFF_HZ` to just below the highest the
+    zero-lag filter allows at ``fs``; the residual at each is the RMS over samples, axes and trials of raw
+    minus filtered positions. The trials are filtered together: each is cut to the same length (the
+    median length of those given, its last samples, the movement's end; shorter trials are left out).
+    The noise line is fitted by least squares over :data:`NOISE_FIT_RANGE` of the Nyquist frequency.
+    """
+    usable = [np.asarray(a, dtype=float) for a in approaches if len(a) >= 4]
+    if not usable:
+        raise ValueError("residual analysis needs at least one trial with 4 or more samples")
+    length = int(np.median([len(a) for a in usable]))
+    x = np.column_stack([a[len(a) - length:] for a in usable if len(a) >= length])
+    top = max_cutoff(fs)
+    if top <= 2 * MIN_CUTOFF_HZ:
+        raise ValueError(f"a sampling rate of {fs:g} Hz is too low for a residual analysis")
+    cutoffs = np.linspace(MIN_CUTOFF_HZ, top, N_CUTOFFS)
+    residual = np.array([np.sqrt(np.mean((x - butterworth_lowpass(x, fs, f)) ** 2)) for f in cutoffs])
+    lo, hi = (r * fs / 2 for r in NOISE_FIT_RANGE)
+    tail = (cutoffs >= lo) & (cutoffs <= hi)
+    slope, noise = np.polyfit(cutoffs[tail], residual[tail], 1)
+    noise = float(max(noise, 0.0))
+    below = np.flatnonzero(residual <= noise)
+    return ResidualAnalysis(cutoffs, residual, noise, float(slope), float(cutoffs[below[0]]) if below.size else None)
+
+
+@dataclass(frozen=True)
+class Lowpass:
+    """The low-pass filter a run applies to the positions before differentiating them.
+
+    ``cutoff_hz``: the -3 dB frequency of the forward-backward filter (Hz), None when no filter is applied;
+    ``chosen_by``: ``"given"`` (a number), ``"winter residual analysis"`` (``auto``, noise above the
+    limit), ``"auto: not needed"`` (``auto``, noise below it) or ``"none"``; ``noise_m``: Winter's noise
+    estimate (m) and ``speed_noise``: the 3-D speed noise it gives without a filter (m/s), when estimated.
+    """
+
+    cutoff_hz: float | None
+    chosen_by: str
+    order: int = ORDER
+    noise_m: float | None = None
+    speed_noise: float | None = None
+
+    def apply(self, pos: np.ndarray, fs: float) -> np.ndarray:
+        """``pos`` filtered (or as it is, when no filter applies)."""
+        if self.cutoff_hz is None or len(pos) < 4:
+            return np.asarray(pos, dtype=float)
+        return butterworth_lowpass(pos, fs, self.cutoff_hz, self.order)
+
+    def to_dict(self) -> dict[str, Any]:
+        """results.json ``filter``: kind, order, passes, cutoff_hz, design_hz, chosen_by, noise estimates."""
+        on = self.cutoff_hz is not None
+        return {"kind": "butterworth low-pass, forward-backward (zero lag)" if on else None,
+                "order": self.order if on else None, "passes": PASSES if on else None,
+                "cutoff_hz": self.cutoff_hz, "design_hz": design_frequency(self.cutoff_hz, self.order) if on else None,
+                "chosen_by": self.chosen_by, "position_noise_m": self.noise_m, "speed_noise_m_s": self.speed_noise,
+                "speed_noise_limit_m_s": SPEED_NOISE_LIMIT if self.chosen_by.startswith(("auto", "winter")) else None}
+
+
+NO_FILTER = Lowpass(None, "none")
+
+
+def parse_lowpass(value: str | float | None) -> str | float:
+    """``"auto"``, ``"none"`` or a cut-off in Hz (> 0) from an option value; ValueError otherwise."""
+    if value is None:
+        return "none"
+    if isinstance(value, str):
+        v = value.strip().lower()
+        if v in LOWPASS_CHOICES:
+            return v
+        try:
+            value = float(v)
+        except ValueError:
+            raise ValueError(f"lowpass must be 'auto', 'none' or a cut-off in Hz, got {value!r}") from None
+    value = float(value)
+    if not (np.isfinite(value) and value > 0):
+        raise ValueError(f"a low-pass cut-off must be a frequency > 0 Hz, got {value:g}")
+    return value
+
+
+def choose_lowpass(spec: str | float | Lowpass | None, approaches: Sequence[np.ndarray], fs: float,
+                   window: int) -> Lowpass:
+    """The :class:`Lowpass` for a run: ``spec`` ``"none"``, a cut-off in Hz, a :class:`Lowpass` (used as it
+    is), or ``"auto"``: Winter's residual analysis over (at most :data:`RESIDUAL_TRIALS` of) the trials'
+    approach positions, filtering at its cut-off only when the noise it finds, differentiated over
+    ``window`` samples, exceeds :data:`SPEED_NOISE_LIMIT` (module docstring)."""
+    if isinstance(spec, Lowpass):
+        return spec
+    spec = parse_lowpass(spec)
+    if spec == "none":
+        return NO_FILTER
+    if spec != "auto":
+        if np.isfinite(fs) and float(spec) > max_cutoff(fs):
+            raise ValueError(f"a low-pass cut-off of {spec:g} Hz is too high for recordings sampled at {fs:g} Hz "
+                             f"(at most {max_cutoff(fs):.3g} Hz for the zero-lag filter)")
+        return Lowpass(float(spec), "given")
+    pick = [a for a in approaches if len(a) >= 4]
+    if not pick or not np.isfinite(fs):
+        return Lowpass(None, "auto: not needed (no trial to estimate the noise from)")
+    step = max(1, len(pick) // RESIDUAL_TRIALS)
+    ra = residual_analysis(pick[::step][:RESIDUAL_TRIALS], fs)
+    sn = speed_noise(ra.noise_m, fs, window)
+    if sn <= SPEED_NOISE_LIMIT:
+        return Lowpass(None, "auto: not needed", noise_m=ra.noise_m, speed_noise=sn)
+    if ra.cutoff_hz is None:  # the residual never falls to the noise line: filter at the highest cut-off scanned
+        return Lowpass(float(ra.cutoffs[-1]), "winter residual analysis (no crossing: highest cut-off)",
+                       noise_m=ra.noise_m, speed_noise=sn)
+    return Lowpass(ra.cutoff_hz, "winter residual analysis", noise_m=ra.noise_m, speed_noise=sn)

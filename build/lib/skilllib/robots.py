@@ -1,0 +1,158 @@
+"""The robot arms of the book: Simple6 (the paper's arm) and three arms shipped by roboticstoolbox.
+
+The paper transfers its prototypes to *Simple6*, the generic 6-DOF arm of the MATLAB Robotics
+Toolbox 10 (``mdl_simple6``; Corke 2017, *Robotics, Vision and Control*, 2nd ed., Springer).
+roboticstoolbox-python does not ship it, so :func:`simple6` builds it from its standard
+Denavit-Hartenberg table (lengths in m, angles in rad):
+
+===== === === ======
+joint  d   a  alpha
+===== === === ======
+1      0   0  +pi/2
+2      0   1   0
+3      0   1  -pi/2
+4      0   0  -pi/2
+5      0   0  +pi/2
+6      0   0   0
+===== === === ======
+
+Two 1 m links (shoulder-elbow, elbow-wrist) and a spherical wrist whose three axes meet at the
+tool point (no tool offset). At the paper's default pose :data:`DEFAULT_POSE_DEG` the tool point
+is at (1, 0, 0) m in the base frame.
+
+Joint velocity limits (rad/s), the numbers the feasibility check compares with:
+
+* Simple6 has none (it is a kinematic model only). The book uses :data:`GENERIC_QD_LIMIT` = pi rad/s
+  (180 deg/s) on every joint: the joint speed of the Universal Robots UR5 (CB3 technical
+  specifications: 180 deg/s on all joints), a typical value for small industrial and collaborative
+  arms. Simple6's links (1 m) are longer than a UR5's (0.43 m), so for the same joint speed its
+  tool moves faster: the limit is a design assumption, not a property of Simple6.
+* UR5: pi rad/s on all joints (the datasheet value above).
+* Puma 560: no velocity limits in roboticstoolbox's model; the book uses the same generic
+  pi rad/s (an assumption, not a Unimation datasheet value).
+* Panda: the Franka Emika datasheet limits, (2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61) rad/s,
+  the ``qdlim`` of roboticstoolbox's URDF model ``rtb.models.Panda()``.
+"""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, NamedTuple
+
+import numpy as np
+
+if TYPE_CHECKING:  # roboticstoolbox takes about a second to import: only when an arm is built
+    import roboticstoolbox as rtb
+
+#: The paper's default dexterous pose of Simple6, deg (q1..q6).
+DEFAULT_POSE_DEG: tuple[float, ...] = (0.0, -60.0, 120.0, 90.0, -90.0, 30.0)
+
+#: The book's generic joint velocity limit, rad/s (180 deg/s; UR5 CB3 joint speed).
+GENERIC_QD_LIMIT: float = float(np.pi)
+
+#: Franka Emika Panda joint velocity limits, rad/s (datasheet; ``rtb.models.Panda().qdlim[:7]``).
+PANDA_QD_LIMITS: tuple[float, ...] = (2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61)
+
+#: Start poses (deg) of the other arms: reachable, inside the joint limits, well conditioned
+#: (cond J about 8 to 9) along a 0.35 m vertical descent with the orientation held fixed.
+UR5_Q0_DEG: tuple[float, ...] = (0.0, -90.0, 90.0, -90.0, -90.0, 0.0)  # tool pointing down
+PUMA560_Q0_DEG: tuple[float, ...] = (0.0, 45.0, -180.0, 0.0, 45.0, 0.0)  # Corke's nominal pose qn
+#: The Panda's ready pose ``qr`` of roboticstoolbox, tool pointing (almost) down.
+PANDA_Q0_RAD: tuple[float, ...] = (0.0, -0.3, 0.0, -2.2, 0.0, 2.0, np.pi / 4)
+
+#: The names :func:`get_robot` accepts.
+ROBOT_NAMES: tuple[str, ...] = ("simple6", "ur5", "puma560", "panda")
+
+
+class RobotSetup(NamedTuple):
+    """An arm, its start pose ``q0`` (rad) and its joint velocity limits ``qd_limits`` (rad/s)."""
+
+    robot: rtb.Robot
+    q0: np.ndarray
+    qd_limits: np.ndarray
+
+
+def simple6() -> rtb.DHRobot:
+    """Simple6, the generic 6-DOF arm of the MATLAB Robotics Toolbox 10 (``mdl_simple6``).
+
+    Standard DH (Corke 2017, sec. 7.1), L1 = L2 = 1 m, revolute joints, no joint limits in the
+    original model (roboticstoolbox stores the default +-pi rad); named poses ``qz`` (zero) and
+    ``qn`` (the paper's default dexterous pose, :data:`DEFAULT_POSE_DEG`).
+    """
+    import roboticstoolbox as rtb
+
+    links = [
+        rtb.RevoluteDH(d=0.0, a=0.0, alpha=np.pi / 2),
+        rtb.RevoluteDH(d=0.0, a=1.0, alpha=0.0),
+        rtb.RevoluteDH(d=0.0, a=1.0, alpha=-np.pi / 2),
+        rtb.RevoluteDH(d=0.0, a=0.0, alpha=-np.pi / 2),
+        rtb.RevoluteDH(d=0.0, a=0.0, alpha=np.pi / 2),
+        rtb.RevoluteDH(d=0.0, a=0.0, alpha=0.0),
+    ]
+    robot = rtb.DHRobot(links, name="Simple6", manufacturer="MATLAB Robotics Toolbox 10 (generic)")
+    robot.addconfiguration_attr("qz", np.zeros(6))
+    robot.addconfiguration_attr("qn", np.deg2rad(DEFAULT_POSE_DEG))
+    return robot
+
+
+def default_pose() -> np.ndarray:
+    """The paper's default dexterous pose of Simple6 as a (6,) array in rad."""
+    return np.deg2rad(np.asarray(DEFAULT_POSE_DEG, dtype=float))
+
+
+def qd_limits_vector(qd_limits: float | np.ndarray | list[float] | tuple[float, ...], n: int) -> np.ndarray:
+    """Joint velocity limits (rad/s) as an (n,) array; a scalar applies to every joint.
+
+    Raises ``ValueError`` when the length is not 1 or ``n`` or a limit is not positive and finite.
+    """
+    lim = np.asarray(qd_limits, dtype=float)
+    if lim.ndim == 0:
+        lim = np.full(n, float(lim))
+    if lim.shape != (n,):
+        raise ValueError(f"qd_limits must be a scalar or have {n} entries (one per joint), got shape {lim.shape}")
+    if not np.all(np.isfinite(lim)) or np.any(lim <= 0):
+        raise ValueError(f"qd_limits must be positive and finite (rad/s), got {lim.tolist()}")
+    return lim
+
+
+def get_robot(name: str) -> RobotSetup:
+    """An arm by name, with its start pose ``q0`` (rad) and velocity limits (rad/s).
+
+    Names (case-insensitive): ``"simple6"`` (the paper's arm at :data:`DEFAULT_POSE_DEG`),
+    ``"ur5"`` and ``"puma560"`` (roboticstoolbox's DH models with their joint limits ``qlim``),
+    ``"panda"`` (the 7-DOF DH model of the Franka Emika Panda: redundant, so the transfer uses the
+    pseudo-inverse). The limits and poses are justified in the module docstring.
+    Returns a :class:`RobotSetup` ``(robot, q0, qd_limits)``; raises ``ValueError`` for other names.
+    """
+    import roboticstoolbox as rtb
+
+    key = str(name).strip().lower()
+    if key == "simple6":
+        robot = simple6()
+        q0 = default_pose()
+        lim = qd_limits_vector(GENERIC_QD_LIMIT, 6)
+    elif key == "ur5":
+        robot = rtb.models.DH.UR5()
+        q0 = np.deg2rad(UR5_Q0_DEG)
+        lim = qd_limits_vector(GENERIC_QD_LIMIT, 6)
+    elif key == "puma560":
+        robot = rtb.models.DH.Puma560()
+        q0 = np.deg2rad(PUMA560_Q0_DEG)
+        lim = qd_limits_vector(GENERIC_QD_LIMIT, 6)
+    elif key == "panda":
+        robot = rtb.models.DH.Panda()
+        q0 = np.asarray(PANDA_Q0_RAD, dtype=float)
+        lim = np.asarray(PANDA_QD_LIMITS, dtype=float)
+    else:
+        raise ValueError(f"unknown robot {name!r}; valid names: {', '.join(ROBOT_NAMES)}")
+    return RobotSetup(robot, np.asarray(q0, dtype=float), lim)
+
+
+def joint_origins(robot: rtb.DHRobot, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Positions (n, 3) m and unit axes (n, 3) of the joints of a standard-DH arm in the base frame.
+
+    Joint j turns about the z axis of DH frame j-1 through its origin (Corke 2017, sec. 7.1.1),
+    so both come from ``fkine_all``. Used to label the joints in the figures.
+    """
+    frames = robot.fkine_all(np.asarray(q, dtype=float))
+    pos = np.array([frames[j].t for j in range(robot.n)])
+    axes = np.array([frames[j].R[:, 2] for j in range(robot.n)])
+    return pos, axes
