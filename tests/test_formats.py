@@ -75,7 +75,8 @@ def write_c3d(path: Path, markers: dict[str, np.ndarray], *, rate: float = FS, u
         g = w.add_group(50, "EVENT", "events")
         g.add_str("LABELS", "event labels", *_pack([lab for lab, _ in events]), len(events))
         times = np.array([[0.0, tm] for _, tm in events], dtype=np.float32)  # C3D dims [2, n]: minutes, seconds
-        g.add_param("TIMES", desc="event times", bytes_per_element=4, bytes=times.tobytes(), dimensions=[2, len(events)])
+        g.add_param("TIMES", desc="event times", bytes_per_element=4, bytes=times.tobytes(),
+                    dimensions=[2, len(events)])
         g.add("USED", "number of events", 2, "<H", len(events))
     with open(path, "wb") as handle, warnings.catch_warnings():
         warnings.simplefilter("ignore")  # c3d warns "No analog data found in file." for a file without analogs

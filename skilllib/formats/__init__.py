@@ -81,7 +81,8 @@ def read_csv_table(path: str | Path, *, columns: Mapping[str, str] | None = None
         df = pd.read_csv(path, dtype={c: str for c in ids}, keep_default_na=False,
                          na_values={c: list(DEFAULT_NA) for c in names if c not in ids}, **opts)
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError, OSError, ValueError,
-            EOFError) as e:  # OSError: a broken gzip; ValueError: a zip holding several files, ...
+            EOFError, ImportError) as e:  # a broken gzip, a zip of several files, .zst without zstandard, ...
+
         raise _csv_error(path, e) from None
     if ids and len(df):
         others = [c for c in df.columns if c not in ids]

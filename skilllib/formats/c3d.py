@@ -188,5 +188,6 @@ def _contact(reader, frames, path: Path, t: np.ndarray, rate: float, contact_cha
         return _contact_from_event(t, min(ev_times), rate)
     if contact_channel is None:
         return np.full(len(t), NO_CONTACT)
+    events = ", ".join(sorted(set(ev_labels))) or "none"
     raise DataFormatError(f"{path}: no analog channel or event {contact_channel!r} (analog channels: "
-                          f"{', '.join(analog_labels) or 'none'}; events: {', '.join(sorted(set(ev_labels))) or 'none'})")
+                          f"{', '.join(analog_labels) or 'none'}; events: {events})")

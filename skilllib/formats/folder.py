@@ -115,7 +115,8 @@ def read_trial_csv(path: Path, *, columns: Mapping[str, str] | None = None) -> p
     with participant or trial columns holds several trials and is refused."""
     try:
         df = pd.read_csv(path, skipinitialspace=True)
-    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError, OSError, ValueError) as e:
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError, OSError, ValueError,
+            ImportError) as e:  # ImportError: .csv.zst without the zstandard package
         msg = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
         raise DataFormatError(f"{path}: not a readable CSV table ({msg[:200]})") from None
     df = df.rename(columns=lambda c: str(c).strip())
@@ -192,9 +193,10 @@ def read_folder(path: str | Path, *, marker: str | None = None, contact_channel:
     contact`` (ids as ``str``; s; m in the book's frame; 0/1, or NaN where a file's own flag is empty),
     trials in the natural order of the module docstring, each file's rows contiguous; ``problems`` lists
     the files that could not be read (:class:`FileProblem`), in the same order (those whose names give
-    no ids first), for the caller to mark those trials invalid. The options are those of :func:`read_trial_file`; the naming rule (sub-folder
-    or ``PARTICIPANT_TRIAL`` name, or ``name_pattern``) is in the module docstring. Two files giving one
-    (participant, trial) are a problem for the second.
+    no ids first), for the caller to mark those trials invalid. The options are those of
+    :func:`read_trial_file`; the naming rule (sub-folder or ``PARTICIPANT_TRIAL`` name, or
+    ``name_pattern``) is in the module docstring. Two files giving one (participant, trial) are a
+    problem for the second.
 
     Raises :class:`~skilllib.data.DataFormatError` when ``path`` is not a folder, an option is wrong
     (unit, axis, pattern), the folder has no such file, or none of its files can be read.

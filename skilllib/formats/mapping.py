@@ -168,16 +168,18 @@ def map_frame(df: pd.DataFrame, *, columns: Mapping[str, str] | None = None, uni
     naming a column that does not exist, a position cell that is not a number (only when positions are
     changed), and a table with no contact signal for some trial and no ``contact_height``.
     """
+    factor = unit_factor(units, source) if units is not None else None
+    try:
+        rot = up_axis_rotation(up_axis) if up_axis is not None else None
+    except DataFormatError as e:
+        raise DataFormatError(f"{source}: {e}") from None
     out = rename_columns(df, columns, source) if columns else df.copy()
-    if units is not None or up_axis is not None:
+    if factor is not None or rot is not None:
         pos = _positions(out, source, first_line)
-        if units is not None:
-            pos = pos * unit_factor(units, source)
-        if up_axis is not None:
-            try:
-                pos = pos @ up_axis_rotation(up_axis).T
-            except DataFormatError as e:
-                raise DataFormatError(f"{source}: {e}") from None
+        if factor is not None:
+            pos = pos * factor
+        if rot is not None:
+            pos = pos @ rot.T
         for j, c in enumerate(POSITION_COLUMNS):
             out[c] = pos[:, j]
     if "contact" in out.columns:
