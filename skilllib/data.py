@@ -297,10 +297,12 @@ def _trial_problem(t: np.ndarray, pos: np.ndarray, contact: np.ndarray, rows: np
     return ""
 
 
-def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *,
-                          lines: np.ndarray | None = None) -> Recordings:
+def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, lines: np.ndarray | None = None,
+                          places: np.ndarray | None = None) -> Recordings:
     """Validate a long table into :class:`Recordings`; see :func:`read_recordings`. ``lines``: the
-    physical file line of each row (as :func:`read_table` gives), else messages name 0-based rows."""
+    physical file line of each row (as :func:`read_table` gives); ``places``: a text per row naming where
+    it came from (``"P01/3.c3d, frame 12"``, for tables read from several files); else messages name
+    0-based rows."""
     if not isinstance(df, pd.DataFrame):
         raise DataFormatError(f"{source}: expected a pandas DataFrame, got {type(df).__name__}")
     df = _check_columns(df, source)
@@ -315,6 +317,8 @@ def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *,
         return int(where[r])
 
     def loc(r: int) -> str:
+        if places is not None:
+            return str(places[kept[r]])
         return f"line {line(r)}" if lines is not None else f"row {line(r)}"
 
     cols = {c: _numeric(df[c], c, source, loc) for c in ("t", "x", "y", "z", "contact")}

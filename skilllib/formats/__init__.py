@@ -2,13 +2,14 @@
 
 Everything ends as the book's long table (:mod:`skilllib.data`): ``participant, trial, t, x, y, z,
 contact`` with identifiers as text, t in s, positions in m with y up, contact 0/1, which
-:func:`skilllib.data.recordings_from_frame` then validates. :func:`read_any` dispatches on the path:
+:func:`skilllib.data.recordings_from_frame` then validates (:func:`load_recordings` does both, and is
+what ``python -m skilllib run --data`` calls). :func:`read_any` dispatches on the path:
 
 ============================  =============================================================  ============
 path                          read by                                                        trials
 ============================  =============================================================  ============
 a folder                      :func:`~skilllib.formats.folder.read_folder`                   one per file
-``*.c3d``                     :func:`~skilllib.formats.c3d.read_c3d` (ezc3d)                 one
+``*.c3d``                     :func:`~skilllib.formats.c3d.read_c3d` (c3d)                   one
 ``*.trc``                     :func:`~skilllib.formats.trc.read_trc`                         one
 anything else (``.csv``,      :func:`read_csv_table` (pandas; compression from the name:     many
 ``.csv.gz``, ``.zip``, ...)   gzip, zip, bz2, xz, zstd)
@@ -33,11 +34,12 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..data import DataFormatError
+from ..data import COLUMNS, NA_TEXT, POSITION_COLUMNS, DataFormatError, Recordings, quote, read_table, \
+    recordings_from_frame
 from .c3d import read_c3d
 from .folder import FileProblem, compile_pattern, file_kind, file_stem, read_folder, read_trial_file, trial_ids
 from .mapping import (UNIT_FACTORS, UP_AXIS_ROTATIONS, contact_from_height, map_frame, parse_columns,
-                      up_axis_rotation)
+                      rename_columns, up_axis_rotation)
 from .trc import read_trc
 
 ID_COLUMNS = ("participant", "trial")
@@ -141,8 +143,90 @@ def read_any(path: str | Path, *, marker: str | None = None, contact_channel: st
                      source=str(path), first_line=2), []
 
 
+def _numeric_text(df: pd.DataFrame, lines: np.ndarray, source: str) -> pd.DataFrame:
+    """The t, x, y, z and contact columns of a text table (:func:`skilllib.data.read_table`) as numbers,
+    :data:`skilllib.data.NA_TEXT` as NaN; a cell that is not a number raises naming its physical line.
+    Ids stay text; the id cells of blank lines become NaN, as the mapping expects of a blank line."""
+    out = df.copy()
+    blank = np.ones(len(df), dtype=bool)
+    for c in df.columns:
+        text = df[c].astype("string").str.strip()
+        blank &= (text.isna() | (text == "")).to_numpy(dtype=bool)
+    for c in [c for c in ("t", *POSITION_COLUMNS, "contact") if c in df.columns]:
+        text = df[c].astype("string").str.strip()
+        missing = (text.isna() | text.isin(NA_TEXT)).to_numpy(dtype=bool)
+        num = pd.to_numeric(text.mask(missing), errors="coerce")
+        bad = num.isna().to_numpy() & ~missing
+        if bad.any():
+            i = int(np.flatnonzero(bad)[0])
+            raise DataFormatError(f"{source}, line {lines[i]}, column '{c}': {quote(text.iloc[i])} is not a number")
+        out[c] = num.to_numpy(dtype=float, na_value=np.nan)
+    for c in [c for c in ID_COLUMNS if c in df.columns]:
+        col = out[c].astype(object)
+        col[blank] = np.nan
+        out[c] = col
+    return out
+
+
+def load_recordings(data: str | Path | pd.DataFrame | Recordings, *, columns: Mapping[str, str] | str | None = None,
+                    units: str | None = None, up_axis: str | None = None, marker: str | None = None,
+                    contact_channel: str | None = None, contact_threshold: float | None = None,
+                    contact_height: float | None = None, name_pattern: str | re.Pattern | None = None) -> Recordings:
+    """Validated :class:`~skilllib.data.Recordings` from a path (folder, C3D, TRC or CSV, see
+    :func:`read_any`), a DataFrame or Recordings, mapped by the options (module docstring).
+
+    A CSV is read as text with its physical line numbers (:func:`skilllib.data.read_table`), so that
+    messages name file lines; its columns are renamed before anything else, so ``--columns`` may name the
+    file's own columns. Files of a folder that cannot be read are kept as ``invalid`` trials with their
+    reason (file name and problem), never dropped; messages about a sample of a folder's file name the
+    file and the sample. Raises :class:`~skilllib.data.DataFormatError` for what cannot be read at all.
+    """
+    opts = dict(columns=parse_columns(columns) if isinstance(columns, str) else columns, units=units,
+                up_axis=up_axis, contact_height=contact_height)
+    if isinstance(data, Recordings):
+        data = data.frame
+    if isinstance(data, pd.DataFrame):
+        return recordings_from_frame(map_frame(data, **opts), "<DataFrame>")
+    path = Path(data)
+    kind = None if path.is_dir() else file_kind(path)
+    if not path.is_dir() and kind not in ("c3d", "trc"):  # a CSV table, perhaps compressed
+        table, lines = read_table(path)
+        if opts["columns"]:
+            table = rename_columns(table, opts["columns"], str(path))
+        table = _numeric_text(table, lines, str(path))
+        mapped = map_frame(table, units=units, up_axis=up_axis, contact_height=contact_height, source=str(path))
+        return recordings_from_frame(mapped, str(path), lines=lines)
+    frame, problems = read_any(path, marker=marker, contact_channel=contact_channel,
+                               contact_threshold=contact_threshold, name_pattern=name_pattern, **opts)
+    places = None
+    if "file" in frame.columns:
+        places = (frame["file"].astype(str) + ", sample " + frame["sample"].astype(str)).to_numpy()
+    elif kind is not None:
+        places = np.array([f"sample {i + 1}" for i in range(len(frame))], dtype=object)
+    rec = recordings_from_frame(frame[list(COLUMNS)], str(path), places=places)
+    return _with_problems(rec, problems, path)
+
+
+def _with_problems(rec: Recordings, problems: list[FileProblem], root: Path) -> Recordings:
+    """``rec`` with one ``invalid`` trial per unreadable file (reason: the file and its problem)."""
+    if not problems:
+        return rec
+    rows, extra = [], {}
+    for q in problems:
+        rel = Path(q.path).relative_to(root) if Path(q.path).is_relative_to(root) else Path(q.path)
+        key = (q.participant or "(no id)", q.trial or str(rel))
+        while key in rec._rows or key in extra:  # a duplicate's second file: its own entry
+            key = (key[0], f"{key[1]} ({rel})")
+        extra[key] = np.array([], dtype=np.int64)
+        rows.append({"participant": key[0], "trial": key[1], "n_samples": 0, "first_line": 0, "status": "invalid",
+                     "reason": f"file {rel}: {q.reason}", "timing": ""})
+    trials = pd.concat([rec.trials, pd.DataFrame(rows)], ignore_index=True)
+    return Recordings(frame=rec.frame, trials=trials, fs=rec.fs, source=rec.source, _rows={**rec._rows, **extra},
+                      _resampled=rec._resampled)
+
+
 __all__ = [
-    "read_any", "read_folder", "read_c3d", "read_trc", "read_csv_table", "read_trial_file", "map_frame",
+    "load_recordings", "read_any", "read_folder", "read_c3d", "read_trc", "read_csv_table", "read_trial_file", "map_frame",
     "parse_columns", "contact_from_height", "up_axis_rotation", "FileProblem", "UNIT_FACTORS",
     "UP_AXIS_ROTATIONS", "DataFormatError",
 ]

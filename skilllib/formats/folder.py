@@ -26,6 +26,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import NamedTuple
 
+import numpy as np
 import pandas as pd
 
 from ..data import DataFormatError
@@ -190,7 +191,7 @@ def read_folder(path: str | Path, *, marker: str | None = None, contact_channel:
     """Every ``.c3d``, ``.trc`` and ``.csv`` (also compressed) file of ``path`` as one trial each.
 
     Returns ``(frame, problems)``: ``frame`` is the long table ``participant, trial, t, x, y, z,
-    contact`` (ids as ``str``; s; m in the book's frame; 0/1, or NaN where a file's own flag is empty),
+    contact`` and ``file``, ``sample`` (the file, relative to ``path``, and the 1-based sample in it) (ids as ``str``; s; m in the book's frame; 0/1, or NaN where a file's own flag is empty),
     trials in the natural order of the module docstring, each file's rows contiguous; ``problems`` lists
     the files that could not be read (:class:`FileProblem`), in the same order (those whose names give
     no ids first), for the caller to mark those trials invalid. The options are those of
@@ -238,6 +239,8 @@ def read_folder(path: str | Path, *, marker: str | None = None, contact_channel:
         df = df.reindex(columns=list(TRIAL_COLUMNS))
         df.insert(0, "trial", trial)
         df.insert(0, "participant", participant)
+        df["file"] = str(p.relative_to(root))  # where each sample came from, for messages
+        df["sample"] = np.arange(1, len(df) + 1)
         frames.append(df)
     if not frames:
         first = problems[0]
