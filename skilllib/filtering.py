@@ -17,10 +17,14 @@ paper's 0.05 m/s onset threshold at rest. Biomechanics therefore low-pass filter
   that part (cut-offs from :data:`NOISE_FIT_RANGE` of the Nyquist frequency) meets f = 0 at the noise's
   RMS amplitude a; the cut-off is the lowest f with R(f) <= a, where the signal distortion left equals the
   noise let through.
-* **When to filter.** ``"auto"`` (the default) filters only when it is needed: when the position noise a
-  of Winter's analysis, differentiated over the pipeline's window, gives a 3-D speed noise (RMS) above
+* **When to filter.** ``"auto"`` (the default) filters only when it is needed: when the position noise,
+  differentiated over the pipeline's window, gives a 3-D speed noise (RMS) above
   :data:`SPEED_NOISE_LIMIT` (5 mm/s, a tenth of the onset threshold; the SPARC chapter shows that speed
-  noise of 1-3 % of the peak speed leaves SPARC unchanged). The book's 60 Hz cohort (0.03 mm, about
+  noise of 1-3 % of the peak speed leaves SPARC unchanged). The noise is measured where the protocol
+  has the hand at rest, the first :data:`REST_S` of every trial (:func:`rest_noise`: the SD of second
+  differences over sqrt(6), which white noise has and a still or slowly swaying hand has not; the median
+  over trials). Winter's intercept is not used for this decision: a recording without noise but with an
+  abrupt start (a kink) has broadband content that his line reads as noise. The book's 60 Hz cohort (0.03 mm, about
   2 mm/s) is therefore not filtered, and its results are those of the paper's procedure. A number
   filters at that cut-off; ``"none"`` never filters.
 
@@ -48,6 +52,7 @@ MIN_CUTOFF_HZ = 2.0  #: the lowest cut-off the residual analysis proposes (Hz)
 RESIDUAL_TRIALS = 100  #: trials the residual analysis looks at (evenly spaced over the file, deterministic)
 END_FIT_S = 0.05  #: s, samples at each end a straight line is fitted to, to extend the signal (:func:`_extend`)
 N_CUTOFFS = 60  #: cut-offs the residual analysis scans
+REST_S = 0.1  #: s, the start of each trial where the hand rests and the noise is measured (at least 5 samples)
 LOWPASS_CHOICES = ("auto", "none")
 
 
@@ -116,6 +121,16 @@ def max_cutoff(fs: float, order: int = ORDER) -> float:
     return fs / 2 * (2 ** (1 / PASSES) - 1) ** (1 / (2 * order)) * 0.99
 
 
+def rest_noise(approaches: Sequence[np.ndarray], fs: float) -> float:
+    """White position noise (m, RMS per axis) at rest: over the first :data:`REST_S` s of every trial (at
+    least 5 samples), the RMS over axes of the SD of second differences divided by sqrt(6) (white noise
+    of SD s has second differences of SD s sqrt(6)); the median over trials. 0 when no trial is long enough."""
+    n = max(5, int(round(REST_S * fs)))
+    est = [float(np.sqrt(np.mean(np.var(np.diff(np.asarray(a[:n], dtype=float), 2, axis=0), axis=0)) / 6))
+           for a in approaches if len(a) >= n]
+    return float(np.median(est)) if est else 0.0
+
+
 @dataclass(frozen=True)
 class ResidualAnalysis:
     """Winter's residual analysis: ``cutoffs`` (Hz), ``residual`` (m, RMS over the positions),
@@ -162,8 +177,9 @@ class Lowpass:
 
     ``cutoff_hz``: the -3 dB frequency of the forward-backward filter (Hz), None when no filter is applied;
     ``chosen_by``: ``"given"`` (a number), ``"winter residual analysis"`` (``auto``, noise above the
-    limit), ``"auto: not needed"`` (``auto``, noise below it) or ``"none"``; ``noise_m``: Winter's noise
-    estimate (m) and ``speed_noise``: the 3-D speed noise it gives without a filter (m/s), when estimated.
+    limit), ``"auto: not needed"`` (``auto``, noise below it) or ``"none"``; ``noise_m``: the position
+    noise at rest (m, :func:`rest_noise`) and ``speed_noise``: the 3-D speed noise it gives without a filter
+    (m/s), when estimated.
     """
 
     cutoff_hz: float | None
@@ -228,12 +244,13 @@ def choose_lowpass(spec: str | float | Lowpass | None, approaches: Sequence[np.n
     pick = [a for a in approaches if len(a) >= 4]
     if not pick or not np.isfinite(fs):
         return Lowpass(None, "auto: not needed (no trial to estimate the noise from)")
+    noise = rest_noise(pick, fs)
+    sn = speed_noise(noise, fs, window)
+    if sn <= SPEED_NOISE_LIMIT:
+        return Lowpass(None, "auto: not needed", noise_m=noise, speed_noise=sn)
     step = max(1, len(pick) // RESIDUAL_TRIALS)
     ra = residual_analysis(pick[::step][:RESIDUAL_TRIALS], fs)
-    sn = speed_noise(ra.noise_m, fs, window)
-    if sn <= SPEED_NOISE_LIMIT:
-        return Lowpass(None, "auto: not needed", noise_m=ra.noise_m, speed_noise=sn)
     if ra.cutoff_hz is None:  # the residual never falls to the noise line: filter at the highest cut-off scanned
         return Lowpass(float(ra.cutoffs[-1]), "winter residual analysis (no crossing: highest cut-off)",
-                       noise_m=ra.noise_m, speed_noise=sn)
-    return Lowpass(ra.cutoff_hz, "winter residual analysis", noise_m=ra.noise_m, speed_noise=sn)
+                       noise_m=noise, speed_noise=sn)
+    return Lowpass(ra.cutoff_hz, "winter residual analysis", noise_m=noise, speed_noise=sn)

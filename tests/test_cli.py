@@ -23,12 +23,12 @@ from skilllib.features import segment, select, trial_features
 from skilllib.smoothness import SPARC_PARAMS, sparc_spectrum
 
 ROOT = Path(__file__).resolve().parents[1]
-README_KEYS = {"dataset", "sparc_params", "contact_speed_window", "trials", "n_selected", "silhouette",
+README_KEYS = {"skilllib_version", "filter", "dataset", "sparc_params", "contact_speed_window", "trials", "n_selected", "silhouette",
                "silhouette_valid_k", "k", "scaling", "clusters", "transfer", "messages", "figures"}
 FIGURES = ("features", "trials_by_participant", "participant_features", "sparc_vs_length", "silhouette_sweep",
            "silhouettes_k", "clusters_pv_sparc", "prototype_speed_profiles", "joint_velocities", "frame_mapping")
 TRIAL_KEYS = {"participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
-              "sparc_band_end_hz", "sparc_capped", "ldlj"}
+              "sparc_band_end_hz", "sparc_capped", "ldlj", "resampled"}
 
 
 @pytest.fixture(scope="module")
@@ -242,7 +242,7 @@ def test_milliseconds_are_recognised(tmp_path, capsys, small_frame):
 
 def test_participants_at_different_rates_stop_the_run(tmp_path, capsys, small_frame):
     other = generate_cohort(8, CohortModel(n_participants=2, n_trials=12, fs=120.0)).frame
-    data = _write(pd.concat([small_frame, other.assign(participant=other["participant"] + 10)]),
+    data = _write(pd.concat([small_frame, other.assign(participant="x" + other["participant"])]),
                   tmp_path / "mixed.csv")
     code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"))
     assert code == 2
@@ -389,7 +389,7 @@ def test_broken_trials_are_marked_and_the_rest_goes_on(tmp_path, capsys, small_f
     i = _rows(df, p_non, t_non)                                     # no onset: at rest until contact
     c = int(np.flatnonzero(df.loc[i, "contact"].to_numpy())[0])
     df.loc[i[:c], ["x", "y", "z"]] = df.loc[i[0], ["x", "y", "z"]].to_numpy(dtype=float)
-    df = df.drop(_rows(df, p_irr, t_irr)[12])                       # a missing sample: irregular sampling
+    df = df.drop(_rows(df, p_irr, t_irr)[12:16])                   # four samples missing in a row: a gap
     i = _rows(df, p_off, t_off)
     df.loc[i, "t"] = df.loc[i[0], "t"] + 2 * (df.loc[i, "t"] - df.loc[i[0], "t"])  # this trial at 50 Hz
     # rows of one trial not contiguous: move the last trial's first row to the top of the file
@@ -405,14 +405,14 @@ def test_broken_trials_are_marked_and_the_rest_goes_on(tmp_path, capsys, small_f
     by_key = {(t["participant"], t["trial"]): t for t in res["trials"]}
     expected = {(p_back, t_back): "backwards", (p_nan, t_nan): "nan", (p_noc, t_noc): "contact",
                 (p_few, t_few): "samples", (p_rep, t_rep): "repeat", (p_last, t_last): "contiguous",
-                (p_inf, t_inf): "infinite", (p_non, t_non): "no onset", (p_irr, t_irr): "irregular",
+                (p_inf, t_inf): "infinite", (p_non, t_non): "no onset", (p_irr, t_irr): "gap in the time stamps",
                 (p_off, t_off): "50.0 hz"}
     for key, word in expected.items():
-        t = by_key[(_plain(key[0]), int(key[1]))]
+        t = by_key[(str(key[0]), str(key[1]))]
         assert t["status"] == "invalid", (key, t)
         assert word in t["reason"].lower(), (key, t["reason"])
         assert t["sparc"] is None and t["pv"] is None
-    others = [t for k, t in by_key.items() if k not in {(_plain(a), int(b)) for a, b in expected}]
+    others = [t for k, t in by_key.items() if k not in {(str(a), str(b)) for a, b in expected}]
     assert any(t["status"] == "selected" for t in others)
     assert "commonest invalid reasons" in out and "invalid: 10" in out
 
@@ -430,16 +430,18 @@ def test_default_run_writes_results_and_figures(tmp_path):
                           check=False, capture_output=True, text=True, cwd=tmp_path, timeout=600)
     assert proc.returncode == 0, proc.stderr
     res = _results(out)
-    assert res["dataset"] == {"path": "data/cohort.csv", "n_trials": 1500, "n_participants": 10, "fs": 60.0}
+    assert res["dataset"] == {"path": "skilllib/datasets/cohort.csv", "n_trials": 1500, "n_participants": 10,
+                              "fs": 60.0, "n_resampled": 0}
+    assert res["filter"]["cutoff_hz"] is None and res["filter"]["chosen_by"] == "auto: not needed"
     assert res["sparc_params"] == {"fc": 20.0, "amp_th": 0.05, "padlevel": 4.0}
     assert len(res["trials"]) == 1500
     statuses = {t["status"] for t in res["trials"]}
     assert statuses <= {"selected", "excluded", "invalid"}
     assert res["k"] == 6 and set(res["silhouette"]) == {str(k) for k in range(2, 17)}
     ids = {(t["participant"], t["trial"]) for t in res["trials"] if t["status"] == "selected"}
-    for c in res["clusters"]:  # prototypes are selected trials, with ids of the input's type (int here)
+    for c in res["clusters"]:  # prototypes are selected trials, with ids as text, as written in the file
         proto = c["prototype"]
-        assert type(proto["participant"]) is int and type(proto["trial"]) is int
+        assert type(proto["participant"]) is str and type(proto["trial"]) is str
         assert (proto["participant"], proto["trial"]) in ids
     pvs = [c["centre"]["pv"] for c in res["clusters"]]
     assert pvs == sorted(pvs) and [c["id"] for c in res["clusters"]] == list(range(6))

@@ -54,7 +54,7 @@ def test_same_seed_same_cohort_other_seed_other_cohort():
 def test_more_trials_leave_the_earlier_trials_unchanged():
     a = cohort.generate_cohort(3, SMALL).frame
     b = cohort.generate_cohort(3, replace(SMALL, n_trials=9)).frame
-    b = b[b.trial <= SMALL.n_trials].reset_index(drop=True)
+    b = b[b.trial.astype(int) <= SMALL.n_trials].reset_index(drop=True)
     assert a.equals(b)
 
 

@@ -169,13 +169,14 @@ def test_every_trial_is_kept_with_status_and_reason():
         (1, 4): approach(amp=0.10, surface=0.2),  # no contact: invalid
     }
     df = frame_of(trials)
-    df.loc[df.index[(df.participant == 1) & (df.trial == 1)][-3:], "contact"] = 1
+    df.loc[df.index[(df.participant == 1) & (df.trial == 1)][-3:], "contact"] = 1  # ints here: a DataFrame
     bad = frame_of({(2, 1): approach()})
     bad.loc[5, "x"] = np.nan  # data-level invalid
     f = trial_features(pd.concat([df, bad], ignore_index=True))
     bad_row = len(df) + 5
     assert list(f.columns) == list(FEATURE_COLUMNS)
-    assert f[["participant", "trial"]].apply(tuple, axis=1).tolist() == [(1, 1), (1, 2), (1, 3), (1, 4), (2, 1)]
+    assert f[["participant", "trial"]].apply(tuple, axis=1).tolist() == [("1", "1"), ("1", "2"), ("1", "3"),
+                                                                          ("1", "4"), ("2", "1")]
     assert f.status.tolist() == ["selected", "excluded", "excluded", "invalid", "invalid"]
     assert f.reason[0] == ""
     assert f.reason[1].startswith("contact speed") and "above 0.7 m/s" in f.reason[1]
@@ -265,7 +266,7 @@ def test_summaries_count_every_trial():
     trials = {(p, tr): approach(amp=0.13 + 0.02 * tr) for p in (1, 2) for tr in range(1, 5)}
     f = trial_features(frame_of(trials))
     counts = status_counts(f)
-    assert counts.loc["all", "total"] == 8 and counts.loc[1, "total"] == 4
+    assert counts.loc["all", "total"] == 8 and counts.loc["1", "total"] == 4
     summ = participant_summary(f)
     assert summ["valid trials"].tolist() == [4, 4]
     assert summ["selected"].sum() == counts.loc["all", "selected"]
@@ -359,3 +360,11 @@ def test_contact_from_the_first_or_second_sample(first_contact, reason):
     contact = np.arange(n) >= first_contact
     out = segment_arrays(np.arange(n) / FS, np.zeros((n, 3)), contact, FS)
     assert isinstance(out, str) and out.startswith(reason), out
+
+
+def test_tables_order_ids_naturally_and_keep_them_as_text():
+    """'P2' before 'P10', '2' before '10'; '01' and '1' two participants (status_counts, participant_summary)."""
+    trials = {(p, "1"): approach() for p in ("P10", "P2", "10", "2", "01", "1")}
+    f = trial_features(frame_of(trials))
+    assert status_counts(f).index.tolist() == ["01", "1", "2", "10", "P2", "P10", "all"]
+    assert participant_summary(f).index.tolist() == ["01", "1", "2", "10", "P2", "P10"]
