@@ -507,3 +507,18 @@ def test_a_z_up_c3d_in_mm_with_a_contact_event_runs_through_validation_and_featu
     feats = trial_features(rec)
     assert feats.status[0] in ("selected", "excluded")
     assert feats.t_contact[0] == pytest.approx(first_low / FS)
+
+
+@pytest.mark.parametrize("units", ["mm", "cm", "m"])
+def test_the_library_trc_writer_round_trips_through_the_reader(tmp_path, units):
+    from skilllib.formats.trc import write_trc as library_write_trc
+
+    pos = approach(40)
+    pos[7, 1] = np.nan  # a gap: an empty cell
+    t = 0.25 + np.arange(len(pos)) / FS
+    path = library_write_trc(tmp_path / "P1_3.trc", {"tip": pos}, t, units=units)
+    df = read_trc(path)
+    assert np.isnan(df["y"].iloc[7]) and np.isnan(df["y"].to_numpy()).sum() == 1
+    ok = ~np.isnan(pos).any(axis=1)
+    np.testing.assert_allclose(df[["x", "y", "z"]].to_numpy()[ok], pos[ok], atol=0.0005 * UNIT_FACTORS[units])
+    np.testing.assert_allclose(df["t"].to_numpy(), t, atol=1e-6)

@@ -125,3 +125,30 @@ def read_trc(path: str | Path, *, marker: str | None = None, units: str | None =
     xyz *= factor
     return pd.DataFrame({"t": out["t"], "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2],
                          "contact": np.full(len(xyz), np.nan)})
+
+
+def write_trc(path: str | Path, markers: dict[str, np.ndarray], t: np.ndarray, *, units: str = "mm") -> Path:
+    """Write marker paths as a TRC file (the layout :func:`read_trc` reads, OpenSim's): ``markers`` name ->
+    (N, 3) positions in m, written in ``units`` (``mm``, ``cm`` or ``m``) to 0.001 of the unit; ``t`` (N,)
+    time stamps in s, uniform (DataRate is 1 / their mean interval). A NaN position is written as an
+    empty cell (a gap). Returns the path."""
+    path = Path(path)
+    factor = unit_factor(units, str(path))
+    t = np.asarray(t, dtype=float)
+    n = len(t)
+    rate = (n - 1) / (t[-1] - t[0]) if n > 1 else 0.0
+    names = list(markers)
+    head = [f"PathFileType\t4\t(X/Y/Z)\t{path.name}",
+            "DataRate\tCameraRate\tNumFrames\tNumMarkers\tUnits\tOrigDataRate\tOrigDataStartFrame\tOrigNumFrames",
+            f"{rate:g}\t{rate:g}\t{n}\t{len(names)}\t{units}\t{rate:g}\t1\t{n}",
+            "Frame#\tTime\t" + "\t".join(f"{m}\t\t" for m in names),
+            "\t\t" + "\t".join(f"X{i}\tY{i}\tZ{i}" for i in range(1, len(names) + 1)), ""]
+    cols = [np.asarray(markers[m], dtype=float) / factor for m in names]
+    rows = []
+    for i in range(n):
+        cells = [str(i + 1), f"{t[i]:.6f}"]
+        for c in cols:
+            cells += ["" if not np.isfinite(v) else f"{v:.3f}" for v in c[i]]
+        rows.append("\t".join(cells))
+    path.write_text("\n".join(head + rows) + "\n")
+    return path
