@@ -42,6 +42,7 @@ import numpy as np
 import pandas as pd
 
 import skilllib.cohort
+import skilllib.datasets
 from skilllib import data, features
 from skilllib.figures import plot_sparc_against, plot_sparc_spectra, plot_speeds_and_spectra, threshold_bound
 from skilllib.smoothness import (SPARC_PARAMS, ldlj, ldlj_many, minimum_jerk_segment, minimum_jerk_speed, nfft,
@@ -615,7 +616,7 @@ assert cap[:, 1].max() > threshold_bound() + 0.1, "text: capped bands can rise a
 # trials' bands end as follows (chapter 3 repeats the whole clustering with both settings):
 
 # %%
-COHORT = Path(skilllib.cohort.__file__).resolve().parents[1] / "data" / "cohort.csv"
+COHORT = skilllib.datasets.cohort_path()  # the book's synthetic cohort, shipped with skilllib
 rec = data.read_recordings(COHORT)
 by_fc = {fc: features.trial_features(rec, sparc_params={"fc": fc}) for fc in (10.0, 20.0)}
 valid = by_fc[20.0][by_fc[20.0].status != "invalid"]

@@ -44,11 +44,12 @@ from scipy.stats import maxwell
 from sklearn.cluster import KMeans
 from sklearn.metrics import roc_auc_score, silhouette_score
 
+import skilllib.datasets
 from skilllib import calibration, cohort, data, duration, features, figures
 from skilllib.prototypes import silhouette_sweep
 
 pd.set_option("display.precision", 3)
-COHORT_CSV = Path(cohort.__file__).resolve().parents[1] / "data" / "cohort.csv"
+COHORT_CSV = skilllib.datasets.cohort_path()  # data/cohort.csv in the repository
 
 # %% [markdown]
 # ## The task and the device

@@ -762,7 +762,7 @@ print("between-participant share of the variance:", between.round(2).to_dict())
 # checks of the claims above (not shown on the site; the build fails when one stops holding)
 assert dep.nmi > 10 * dep.baseline_q95 and dep.p_value == 1 / (1 + pp.N_PERMUTATIONS), "text: far above chance"
 assert between["pv"] > 0.6 > 0.3 > between["sparc"], "text: PV mostly a property of the person, SPARC much less"
-assert spread_p.loc[[1, 8], "clusters"].tolist() == [2, 2] and set(spread_p.loc[[1, 8], "main cluster"]) == {0}, (
+assert spread_p.loc[["1", "8"], "clusters"].tolist() == [2, 2] and set(spread_p.loc[["1", "8"], "main cluster"]) == {0}, (
     "text: participants 1 and 8 only in the two slowest clusters")
 assert composition["largest share"].max() > 0.55 and composition["largest share"].idxmax() == 5, (
     "text: the fastest cluster is mostly one participant")

@@ -131,8 +131,9 @@ def write_trc(path: str | Path, markers: dict[str, np.ndarray], t: np.ndarray, *
     """Write marker paths as a TRC file (the layout :func:`read_trc` reads, OpenSim's): ``markers`` name ->
     (N, 3) positions in m, written in ``units`` (``mm``, ``cm`` or ``m``) to 0.001 of the unit; ``t`` (N,)
     time stamps in s, uniform (DataRate is 1 / their mean interval). A NaN position is written as an
-    empty cell (a gap). Returns the path."""
+    empty cell (a gap). Creates the folder. Returns the path."""
     path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
     factor = unit_factor(units, str(path))
     t = np.asarray(t, dtype=float)
     n = len(t)
