@@ -3,8 +3,9 @@
 Steps (each a skilllib function the chapters also call): read and validate the recordings
 (:mod:`skilllib.data`); segment every trial and compute its features, status and reason
 (:mod:`skilllib.features`); silhouette sweep and K-means prototypes on the selected trials' (PV, SPARC)
-tuples (:mod:`skilllib.prototypes`); joint velocities of every prototype on a robot arm, feasibility
-and time scaling (:mod:`skilllib.transfer`). :func:`run` returns the results dictionary that is
+tuples (:mod:`skilllib.prototypes`); joint velocities of every prototype on a robot arm
+(:mod:`skilllib.transfer`), its accelerations, torques, limits, time scaling and executed motion
+(:mod:`skilllib.feasibility`). :func:`run` returns the results dictionary that is
 written to ``results.json`` (schema in README) and writes the figures beside it.
 """
 from __future__ import annotations
@@ -24,11 +25,12 @@ import pandas as pd
 
 from . import prototypes as pt
 from .data import MAX_RANGE_M, Recordings, read_recordings
+from .feasibility import Assessment, assess, resolve_limits, transfer_block
 from .features import CONTACT_WINDOW, ONSET_SPEED, segment, select, trial_features
 from .robots import RobotSetup, get_robot, qd_limits_vector
 from .sensitivity import SparcSensitivity, sparc_sensitivity
 from .smoothness import DEFAULT_AMP_TH, DEFAULT_FC, DEFAULT_PADLEVEL
-from .transfer import TransferResult, transfer, transfer_summary
+from .transfer import TransferResult, transfer
 
 #: The committed synthetic cohort (default input).
 REPO_ROOT = Path(__file__).resolve().parents[1]
@@ -65,6 +67,7 @@ class PipelineRun:
     profiles: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
     messages: list[str] = field(default_factory=list)
     sensitivity: SparcSensitivity | None = None
+    assessments: list[Assessment] = field(default_factory=list)
 
 
 def _plain(v: Any) -> Any:
@@ -142,6 +145,16 @@ def check_options(k: int, robot: str, qd_max: Sequence[float] | float | None,
     return setup, limits
 
 
+def check_dynamic_options(robot: str, setup: RobotSetup, qdd_max: Sequence[float] | float | None,
+                          tau_max: Sequence[float] | float | None):
+    """The acceleration and torque limits for the options (:func:`skilllib.feasibility.resolve_limits`);
+    :class:`OptionError` for a bad one."""
+    try:
+        return resolve_limits(robot, setup.robot, qdd_max, tau_max)
+    except ValueError as e:
+        raise OptionError(f"{e} ({setup.robot.name}, {setup.robot.n} joints)") from None
+
+
 def _check_nyquist(params: dict[str, float], fs: float) -> None:
     """fc above the Nyquist frequency would take the band into the spectrum's mirror image."""
     if np.isfinite(fs) and params["fc"] > fs / 2:
@@ -150,7 +163,9 @@ def _check_nyquist(params: dict[str, float], fs: float) -> None:
 
 
 def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int = pt.DEFAULT_K,
-        robot: str = "simple6", qd_max: Sequence[float] | float | None = None, scaling: str = "raw",
+        robot: str = "simple6", qd_max: Sequence[float] | float | None = None,
+        qdd_max: Sequence[float] | float | None = None, tau_max: Sequence[float] | float | None = None,
+        scaling: str = "raw",
         random_state: int = 0, fc: float = DEFAULT_FC, amp_th: float = DEFAULT_AMP_TH,
         padlevel: int = DEFAULT_PADLEVEL, sensitivity: Sequence[Mapping[str, float]] | None = None,
         progress: Progress = _no_progress, write_figures: bool = True) -> PipelineRun:
@@ -158,7 +173,9 @@ def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int
 
     ``k``: clusters (the paper: 6), reduced with a message when the selected trials allow fewer;
     ``robot``: a name of :func:`skilllib.robots.get_robot`; ``qd_max``: joint velocity limits in
-    rad/s (one for all joints or one per joint; default: the robot's); ``scaling``: "raw" (the paper)
+    rad/s (one for all joints or one per joint; default: the robot's); ``qdd_max`` (rad/s^2) and ``tau_max``
+    (N m): joint acceleration and torque limits, likewise (default: the robot's,
+    :func:`skilllib.robots.dynamic_limits`); ``scaling``: "raw" (the paper)
     or "standard"; ``fc`` (Hz, at most the Nyquist frequency of the recordings), ``amp_th`` and
     ``padlevel``: the SPARC parameters (:func:`skilllib.smoothness.sparc`; default the book's, fc = 20 Hz);
     ``sensitivity``: other SPARC settings (dicts of some of fc, amp_th, padlevel; the rest as this run's)
@@ -172,6 +189,7 @@ def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int
     """
     path = Path(data) if data is not None else DEFAULT_DATA
     setup, limits = check_options(k, robot, qd_max, scaling)
+    dyn_limits = check_dynamic_options(robot, setup, qdd_max, tau_max)
     params = check_sparc_params(fc, amp_th, padlevel)
     variants = [check_sparc_params(**{**params, **dict(v)}) for v in _settings(sensitivity)]
 
@@ -242,7 +260,8 @@ def run(data: str | Path | None = None, out: str | Path | None = None, *, k: int
             result.profiles.append((seg.t - seg.t[0], seg.speed))
             result.transfers.append(transfer(setup.robot, seg.t - seg.t[0], seg.pos, seg.vel, q0=setup.q0,
                                              qd_limits=limits, cluster=c))
-        results["transfer"] = transfer_summary(result.transfers)
+        result.assessments = assess(setup.robot, result.transfers, dyn_limits, sparc_params=params)
+        results["transfer"] = transfer_block(result.assessments)
     if variants and sweep is not None:
         result.sensitivity = sparc_sensitivity(recordings, [params, *variants], k=results["k"], scaling=scaling,
                                                random_state=random_state, reference=(features, sweep))
@@ -327,18 +346,21 @@ def summary_lines(run_: PipelineRun) -> list[str]:
     if run_.prototypes is not None:
         fit = run_.prototypes
         lines.append(f"k = {fit.k} clusters ({fit.scaling} features), average silhouette {fit.silhouette:.3f}")
-        for c, tr in zip(range(fit.k), run_.transfers):
+        for c, (tr, a) in enumerate(zip(run_.transfers, run_.assessments)):
             p = {col: fit.prototypes.at[c, col] for col in fit.prototypes.columns}
-            verdict = "feasible" if tr.feasible else (
-                f"needs time scaling x{tr.time_scale:.2f}" if not tr.flags else f"{len(tr.flags)} flag(s)")
+            dyn = a.dynamics
+            verdict = "feasible" if dyn.feasible else (
+                f"needs time scaling x{dyn.time_scale:.2f} ({dyn.binding_limit} binds)" if not tr.flags
+                else f"{len(tr.flags)} flag(s)")
             peak = f"{np.nanmax(tr.peak_abs_qd):.2f}" if np.isfinite(tr.peak_abs_qd).any() else "n/a"
             lines.append(f"  cluster {c}: size {fit.sizes[c]}, prototype participant {p['participant']} trial "
                          f"{p['trial']} (PV {p['pv']:.2f} m/s, SPARC {p['sparc']:.2f}); "
                          f"peak |qd| {peak} rad/s, {verdict}")
-        n_ok = sum(tr.feasible for tr in run_.transfers)
-        lim = run_.transfers[0].qd_limits
-        lim_txt = f"{lim[0]:.3g} rad/s" if np.all(lim == lim[0]) else f"{', '.join(f'{v:.3g}' for v in lim)} rad/s"
-        lines.append(f"feasibility on {run_.transfers[0].robot} (joint velocity limits {lim_txt}): "
+        n_ok = sum(a.dynamics.feasible for a in run_.assessments)
+        dyn = run_.assessments[0].dynamics
+        limits = [_limits_text("joint velocity limits", run_.transfers[0].qd_limits, "rad/s"),
+                  _limits_text("acceleration", dyn.qdd_limits, "rad/s^2"), _limits_text("torque", dyn.tau_limits, "N m")]
+        lines.append(f"feasibility on {run_.transfers[0].robot} ({'; '.join(x for x in limits if x)}): "
                      f"{n_ok} of {fit.k} prototypes feasible as recorded")
     if run_.sensitivity is not None:
         sens = run_.sensitivity
@@ -349,6 +371,13 @@ def summary_lines(run_: PipelineRun) -> list[str]:
                          f"with this run's k = {sens.k} partition; {int(c['prototypes kept'])} of {sens.k} prototypes kept")
     lines += [f"note: {m}" for m in run_.messages]
     return lines
+
+
+def _limits_text(what: str, lim: np.ndarray | None, unit: str) -> str:
+    """'what 3.14 rad/s' (one value for all joints) or 'what 1, 2, ... rad/s'; '' for no limits."""
+    if lim is None:
+        return ""
+    return f"{what} {lim[0]:.3g} {unit}" if np.all(lim == lim[0]) else f"{what} {', '.join(f'{v:.3g}' for v in lim)} {unit}"
 
 
 #: Reasons whose numbers differ from trial to trial, and the kind they are counted as in the summary.
