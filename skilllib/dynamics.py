@@ -53,11 +53,20 @@ LIMIT_NAMES: tuple[str, ...] = ("velocity", "acceleration", "torque")
 def derivative(x: np.ndarray, t: np.ndarray) -> np.ndarray:
     """d/dt of samples x (N, ...) at times t (N,) s: the Savitzky-Golay derivative of
     :func:`skilllib.features.velocity` over its fixed 2/60 s span when t is uniform (to 1e-6 relative),
-    else ``numpy.gradient`` with second-order edges. NaN samples make their neighbours NaN."""
+    else ``numpy.gradient`` with second-order edges. Rows with NaN (samples not computed) stay NaN, and each
+    run of computed rows is differentiated on its own (a single computed row between gaps: NaN)."""
     x = np.asarray(x, dtype=float)
     t = np.asarray(t, dtype=float)
-    if len(t) < 2:
-        return np.zeros_like(x)
+    out = np.full_like(x, np.nan)
+    good = np.all(np.isfinite(x.reshape(len(x), -1)), axis=1)
+    edges = np.flatnonzero(np.diff(np.r_[0, good.astype(int), 0]))
+    for a, b in zip(edges[::2], edges[1::2]):  # runs good[a:b]
+        if b - a >= 2:
+            out[a:b] = _derivative_run(x[a:b], t[a:b])
+    return out
+
+
+def _derivative_run(x: np.ndarray, t: np.ndarray) -> np.ndarray:
     dt = np.diff(t)
     if np.ptp(dt) <= 1e-6 * dt.mean():
         return sg_derivative(x, 1.0 / dt.mean())
