@@ -43,12 +43,23 @@ IK_CHAIN: tuple[tuple[str, str, dict, bool], ...] = (
 
 class IKAnswer(NamedTuple):
     """What :func:`solve_ik` found: ``q`` (rad; the best attempt when not ``ok``), ``residual_m`` (its
-    position residual, m), ``ok`` and ``solver`` (the name in :data:`IK_CHAIN` that succeeded, or "")."""
+    position residual, m), ``ok``, ``solver`` (the name in :data:`IK_CHAIN` that succeeded, or ""),
+    and of the best attempt its orientation residual ``orientation_rad`` and the joints (1-based) outside
+    their limits ``outside``."""
 
     q: np.ndarray
     residual_m: float
     ok: bool
     solver: str
+    orientation_rad: float = float("nan")
+    outside: tuple[int, ...] = ()
+
+    def why(self) -> str:
+        """Why the best attempt was not accepted, for a flag: its residuals and the joints outside limits."""
+        text = f"best position residual {self.residual_m:.3g} m, orientation {self.orientation_rad:.3g} rad"
+        if self.outside:
+            text += ", outside the joint limits at " + ", ".join(f"q{j}" for j in self.outside)
+        return text
 
 
 def pose_residual(ets: rtb.ETS, q: np.ndarray, target: np.ndarray) -> tuple[float, float]:
@@ -69,7 +80,7 @@ def solve_ik(ets: rtb.ETS, target: np.ndarray, seed_q: np.ndarray, k: int, *, to
     (0: only the seeded search). Returns an :class:`IKAnswer`; when nothing is accepted, the attempt with
     the smallest position residual."""
     qlim = np.asarray(ets.qlim, dtype=float)
-    best_q, best_res = np.asarray(seed_q, dtype=float), np.inf
+    best = IKAnswer(np.asarray(seed_q, dtype=float), np.inf, False, "")
     for name, method, kwargs, restarting in IK_CHAIN:
         if restarting and restarts <= 0:
             continue
@@ -80,9 +91,9 @@ def solve_ik(ets: rtb.ETS, target: np.ndarray, seed_q: np.ndarray, k: int, *, to
         if not np.all(np.isfinite(q)):
             continue
         dp, dr = pose_residual(ets, q, target)
-        inside = np.all(q >= qlim[0] - joint_tol) and np.all(q <= qlim[1] + joint_tol)
-        if dp <= tol and dr <= tol and inside:
-            return IKAnswer(q, dp, True, name)
-        if dp < best_res:
-            best_q, best_res = q, dp
-    return IKAnswer(best_q, best_res, False, "")
+        outside = tuple(int(j) + 1 for j in np.flatnonzero((q < qlim[0] - joint_tol) | (q > qlim[1] + joint_tol)))
+        if dp <= tol and dr <= tol and not outside:
+            return IKAnswer(q, dp, True, name, dr)
+        if dp < best.residual_m:
+            best = IKAnswer(q, dp, False, "", dr, outside)
+    return best

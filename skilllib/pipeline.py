@@ -324,6 +324,12 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
         keep(fg.plot_prototype_profiles(run_.profiles, run_.prototypes.prototypes), "prototype_speed_profiles")
         keep(fg.plot_joint_velocities(run_.transfers), "joint_velocities")
         keep(fg.plot_frame_mapping(robot, run_.transfers[-1]), "frame_mapping")  # the fastest prototype
+        dyns = [a.dynamics for a in run_.assessments]
+        keep(fg.plot_joint_accelerations(dyns), "joint_accelerations")
+        if all(d.tau is not None for d in dyns):
+            keep(fg.plot_joint_torques(dyns), "joint_torques")
+        keep(fg.plot_executed_speed(run_.assessments), "executed_speed")
+        keep(fg.plot_time_scales({run_.transfers[0].robot: dyns}), "time_scales")
     if run_.sensitivity is not None:
         keep(fg.plot_sparc_sensitivity(run_.sensitivity), "sparc_sensitivity")
     return written

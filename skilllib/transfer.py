@@ -329,14 +329,14 @@ def transfer(robot: rtb.Robot | str, t: np.ndarray, positions: np.ndarray, veloc
             continue
         target = T0.copy()
         target[:3, 3] = x_base[k]
-        qk, res, ok, _ = solve_ik(ets, target, q_prev, k, tol=IK_RESIDUAL_TOL_M, joint_tol=JOINT_LIMIT_TOL_RAD,
-                                  restarts=IK_RESTARTS)
-        residual[k] = res
-        if not ok:
+        ans = solve_ik(ets, target, q_prev, k, tol=IK_RESIDUAL_TOL_M, joint_tol=JOINT_LIMIT_TOL_RAD,
+                       restarts=IK_RESTARTS)
+        qk, residual[k] = ans.q, ans.residual_m
+        if not ans.ok:
             last = (f"cond J = {cond_j[k_prev]:.3g} at the last solved sample {k_prev}" if k_prev >= 0
                     else "no sample solved before")
             flags.append({"sample": k, "reason": f"ik_failed: no solver found a pose within the joint limits "
-                                                 f"(best position residual {res:.3g} m) although the target lies "
+                                                 f"({ans.why()}) although the target lies "
                                                  f"{shell.describe(x_base[k])}; {last}"})
             continue
         step = float(np.max(np.abs(qk - q_prev)))
