@@ -48,7 +48,8 @@ REL = 1e-12  # floats that pass through JSON (repr round-trips exactly; this onl
 FEATURES = ("pv", "contact_speed", "duration", "sparc", "sparc_band_end_hz", "ldlj")
 TRIAL_KEYS = {"participant", "trial", "status", "reason", *FEATURES, "sparc_capped"}
 FIGURES = ("features", "trials_by_participant", "participant_features", "sparc_vs_length", "silhouette_sweep",
-           "silhouettes_k", "clusters_pv_sparc", "prototype_speed_profiles", "joint_velocities", "frame_mapping")
+           "silhouettes_k", "clusters_pv_sparc", "prototype_speed_profiles", "joint_velocities", "frame_mapping",
+           "joint_accelerations", "executed_speed", "time_scales")
 #: The base file: 5 participants x 16 trials at 60 Hz; its 27 selected trials make k = 6 silhouette-valid
 #: without shrinking the sweep, and K-means with random_state 1 partitions them differently from 0.
 BASE_SEED, BASE_MODEL = 9, CohortModel(n_participants=5, n_trials=16, fs=60.0)

@@ -198,13 +198,15 @@ def plot_time_scales(by_arm: Mapping[str, Sequence[JointDynamics]]) -> plt.Figur
         ax.grid(alpha=0.3, axis="y")
     axs[0, 0].set_ylim(0.9, top * 1.08 + 0.1)
     axs[0, 0].set_ylabel("time scale s")
-    axs[0, 0].plot([], [], color="k", lw=2, label="all limits (binding one named)")
     handles, labels = [], []
     for ax in axs.flat:
         for h, lab in zip(*ax.get_legend_handles_labels()):
             if lab not in labels:
                 handles.append(h)
                 labels.append(lab)
+    order = [labels.index(f"{name} alone") for name in LIMIT_NAMES if f"{name} alone" in labels]
+    handles = [handles[i] for i in order] + [plt.Line2D([], [], color="k", lw=2)]
+    labels = [labels[i] for i in order] + ["all limits (binding one named)"]
     fig.legend(handles, labels, loc="upper center", ncol=len(labels), frameon=False, fontsize="small")
     fig.tight_layout(rect=(0, 0, 1, 0.9))
     return fig
