@@ -242,7 +242,8 @@ class JointDynamics:
         return not self.transfer.flags and self.limits_hold(1.0)
 
     def summary(self) -> dict[str, Any]:
-        """The per-prototype entries of results.json this module adds (plain floats and lists)."""
+        """The per-prototype entries of results.json this module adds (plain floats and lists; the
+        transfer's own ``feasible`` and ``time_scale`` stay those of the velocity limits)."""
         def plain(x: float | None) -> float | None:
             return None if x is None or not np.isfinite(x) else float(x)
 
@@ -252,8 +253,8 @@ class JointDynamics:
         return {"peak_abs_qdd": vec(self.peak_abs_qdd), "peak_abs_qddd": vec(self.peak_abs_qddd),
                 "peak_abs_tau": vec(self.peak_abs_tau),
                 "time_scales": {k: plain(v) for k, v in self.time_scales().items()},
-                "time_scale": plain(self.time_scale), "binding_limit": self.binding_limit,
-                "feasible": bool(self.feasible)}
+                "time_scale_all_limits": plain(self.time_scale), "binding_limit": self.binding_limit,
+                "feasible_all_limits": bool(self.feasible)}
 
 
 def joint_dynamics(robot: rtb.Robot, result: TransferResult, qdd_limits: float | np.ndarray | None = None,

@@ -8,8 +8,10 @@ For each prototype's :class:`~skilllib.transfer.TransferResult` on one arm, :fun
   with the executed PV, SPARC and tracking error (:mod:`skilllib.execution`).
 
 :func:`transfer_block` turns the assessments into the ``transfer`` block of results.json (README):
-the entries of :func:`skilllib.transfer.transfer_summary` with ``feasible`` and ``time_scale`` now for all
-limits, plus ``qdd_limits``, ``tau_limits`` and ``execution`` (controller rate, actuator bandwidth).
+the entries of :func:`skilllib.transfer.transfer_summary` (whose ``feasible`` and ``time_scale`` are those
+of the velocity limits, the paper's question) with the dynamics' and executions' entries
+(``feasible_all_limits``, ``time_scale_all_limits``, ``binding_limit``, ...), plus ``qdd_limits``,
+``tau_limits`` and ``execution`` (controller rate, actuator bandwidth).
 The limits an arm gets by default, and their sources, are those of :func:`skilllib.robots.dynamic_limits`;
 :func:`resolve_limits` applies the user's.
 """

@@ -194,7 +194,7 @@ def test_no_slowing_helps_when_gravity_exceeds_a_torque_limit():
     lim[1] = 0.9 * static[1]  # the shoulder cannot even hold the arm
     d = joint_dynamics(robot, r, tau_limits=lim)
     assert d.time_scale == np.inf and d.binding_limit == "torque" and not d.feasible
-    assert d.summary()["time_scale"] is None
+    assert d.summary()["time_scale_all_limits"] is None
     json.dumps(d.summary(), allow_nan=False)
 
 
@@ -255,11 +255,11 @@ def test_summary_and_input_errors():
     with pytest.raises(ValueError, match="qdd_limits must be positive"):
         joint_dynamics(simple6(), r, qdd_limits=[1, 2, 3, 4, 5, -6])
     summary = joint_dynamics(simple6(), r, qdd_limits=2.0).summary()
-    assert set(summary) == {"peak_abs_qdd", "peak_abs_qddd", "peak_abs_tau", "time_scales", "time_scale",
-                            "binding_limit", "feasible"}
+    assert set(summary) == {"peak_abs_qdd", "peak_abs_qddd", "peak_abs_tau", "time_scales", "time_scale_all_limits",
+                            "binding_limit", "feasible_all_limits"}
     assert summary["peak_abs_tau"] is None and summary["time_scales"]["torque"] is None
-    assert summary["binding_limit"] == "acceleration" and not summary["feasible"]
-    assert summary["time_scale"] == pytest.approx(np.sqrt(max(summary["peak_abs_qdd"]) / 2.0))
+    assert summary["binding_limit"] == "acceleration" and not summary["feasible_all_limits"]
+    assert summary["time_scale_all_limits"] == pytest.approx(np.sqrt(max(summary["peak_abs_qdd"]) / 2.0))
     json.dumps(summary, allow_nan=False)
 
 

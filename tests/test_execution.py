@@ -115,11 +115,12 @@ def test_assessment_and_block():
     assert block["qdd_limits"] is None and block["tau_limits"][1] == 60.0
     assert block["execution"] == {"control_rate_hz": CONTROL_RATE_HZ, "actuator_bandwidth_hz": ACTUATOR_BANDWIDTH_HZ}
     slow, fast = block["prototypes"]
-    assert slow["binding_limit"] is None and slow["feasible"] and slow["time_scale"] == 1.0
-    assert fast["binding_limit"] == "torque" and fast["time_scale"] > 1 and not fast["feasible"]
+    assert slow["binding_limit"] is None and slow["feasible_all_limits"] and slow["time_scale_all_limits"] == 1.0
+    assert fast["binding_limit"] == "torque" and fast["time_scale_all_limits"] > 1 and not fast["feasible_all_limits"]
+    assert fast["feasible"] and fast["time_scale"] == 1.0  # the velocity limits alone (the transfer's keys)
     assert fast["time_scales"]["velocity"] == 1.0 and fast["time_scales"]["acceleration"] is None
     assert slow["executed_time_scaled"] == slow["executed"]
-    assert fast["executed_time_scaled"]["time_scale"] == fast["time_scale"]
+    assert fast["executed_time_scaled"]["time_scale"] == fast["time_scale_all_limits"]
     assert set(fast["executed"]) == {"pv", "sparc", "max_tracking_error_m", "saturated_fraction", "time_scale"}
     json.dumps(block, allow_nan=False)
     with pytest.raises(ValueError, match="no dynamic parameters"):

@@ -493,21 +493,25 @@ def _expected_feasibility(base: dict, lim: np.ndarray) -> tuple[list[bool], list
 
 
 def _check_limits_change_only_feasibility(res: dict, base: dict, lim: np.ndarray, d: Direct) -> None:
-    """Only what depends on the velocity limits changed: the velocity stretch is peak / limit, the overall
-    stretch the larger of it and the (unchanged) acceleration stretch (Simple6 has no torques), feasible
-    exactly when that is 1, the binding limit the one that asks for more; the executions are those of the
-    direct calls (check_transfer)."""
+    """Only what depends on the velocity limits changed: feasible and time_scale (the velocity limits' own)
+    and time_scales.velocity are peak / limit, the stretch of all limits the larger of it and the
+    (unchanged) acceleration stretch (Simple6 has no torques), feasible_all_limits exactly when that is 1,
+    the binding limit the one that asks for more; the executions are those of the direct calls."""
     varying = ("transfer.qd_limits", "transfer.prototypes.*.feasible", "transfer.prototypes.*.time_scale",
                "transfer.prototypes.*.time_scales.velocity", "transfer.prototypes.*.binding_limit",
+               "transfer.prototypes.*.feasible_all_limits", "transfer.prototypes.*.time_scale_all_limits",
                "transfer.prototypes.*.executed", "transfer.prototypes.*.executed_time_scaled")
     assert _without(res, *varying) == _without(base, *varying)  # peaks, det J, cond J, flags, clusters, ...
     assert res["transfer"]["qd_limits"] == [float(v) for v in lim]
-    _, scale = _expected_feasibility(base, lim)
-    for i, (p, p0, s_v) in enumerate(zip(res["transfer"]["prototypes"], base["transfer"]["prototypes"], scale)):
+    within, scale = _expected_feasibility(base, lim)
+    for i, (p, p0, s_v, ok) in enumerate(zip(res["transfer"]["prototypes"], base["transfer"]["prototypes"], scale,
+                                             within)):
         _num(p["time_scales"]["velocity"], s_v, f"time_scales.velocity[{i}]")
+        _num(p["time_scale"], s_v, f"time_scale[{i}]")
+        assert p["feasible"] is (not p["flags"] and ok)
         s_a = p0["time_scales"]["acceleration"]
-        _num(p["time_scale"], max(s_v, s_a), f"time_scale[{i}]")
-        assert p["feasible"] is (not p["flags"] and max(s_v, s_a) == 1.0)
+        _num(p["time_scale_all_limits"], max(s_v, s_a), f"time_scale_all_limits[{i}]")
+        assert p["feasible_all_limits"] is (not p["flags"] and max(s_v, s_a) == 1.0)
         assert p["binding_limit"] == (None if max(s_v, s_a) == 1.0 else "velocity" if s_v > s_a else "acceleration")
     check_transfer(res, d, check_clustering(res, d, pt.DEFAULT_K), qd_limits=lim)
 
@@ -549,7 +553,8 @@ def test_qdd_max_changes_the_acceleration_stretch_only(runs, base_file, base, di
     peaks = sorted(max(p["peak_abs_qdd"]) for p in base["transfer"]["prototypes"])
     qdd = (peaks[1] + peaks[2]) / 2
     res = runs(base_file, qdd_max=qdd)[0]
-    varying = ("transfer.qdd_limits", "transfer.prototypes.*.feasible", "transfer.prototypes.*.time_scale",
+    varying = ("transfer.qdd_limits", "transfer.prototypes.*.feasible_all_limits",
+               "transfer.prototypes.*.time_scale_all_limits",
                "transfer.prototypes.*.time_scales.acceleration", "transfer.prototypes.*.binding_limit",
                "transfer.prototypes.*.executed", "transfer.prototypes.*.executed_time_scaled")
     assert _without(res, *varying) == _without(base, *varying)
