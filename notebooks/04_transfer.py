@@ -910,8 +910,8 @@ assert per_arm["max_cond_J"].max() < 10, "text: 'the condition numbers stay belo
 # derivative that gave the velocity from the positions, and $\dot J$ is the Jacobian's time derivative,
 # its Hessian contracted with $\dot q$ (`ETS.hessian0`; roboticstoolbox's `jacob0_dot` computes the
 # same, the tests compare). For the Panda's minimum-norm solution $\dot q = J^+ v$ the exact derivative
-# has one more term, $(I - J^+ J)\, \dot J^\top (J J^\top)^{-1} v$, in the null space of $J$. The jerk
-# $\dddot q$ is the same three-point derivative of $\ddot q$, a stated numerical choice.
+# has one more term, $(I - J^+ J)\, \dot J^\top (J J^\top)^{-1} v$, in the null space of $J$. The jerk,
+# $d\ddot q / dt$, is the same three-point derivative of $\ddot q$, a stated numerical choice.
 # `skilllib.dynamics.joint_dynamics` computes all three per sample and joint, and
 # `skilllib.feasibility.assess` adds the limits and the executed motion of the next sections, on every
 # arm at once. The check of [](#eq-qddot) is the plain derivative of $\dot q$ itself.
@@ -932,7 +932,7 @@ accel = pd.DataFrame({"PV (m/s)": protos["pv"], "SPARC": protos["sparc"], "hand 
                      index=peaks.index)
 accel["qdd / hand a (rad/m)"] = accel["Simple6 max |qdd| (rad/s²)"] / accel["hand peak |a| (m/s²)"]
 panda_jerk = max(np.nanmax(d.peak_abs_qddd / np.array(robots.PANDA_QDDD_LIMITS)) for d in dyn["panda"])
-print(gap.round(4).to_string())
+print("largest |qdd - d(qd)/dt| over the peak |qdd|, per arm:", gap.round(4).to_dict())
 print(f"largest jerk on the Panda against its datasheet jerk limits: {panda_jerk:.0%}")
 accel.round(3)
 
@@ -1276,8 +1276,9 @@ assert round(r2, 3) == 0.852 and round(r2_sparc, 3) == 0.859, "text: 'PV and dur
 # To show both, the fastest prototype is blown up in space, every position and velocity multiplied by
 # the factor that makes its descent 2 m, and transferred to Simple6. From the tool point at (1, 0, 0) m,
 # 1 m in front of the shoulder, the arm's 2 m reach ends at a descent of $\sqrt{2^2 - 1^2} \approx
-# 1.73$ m (a little earlier here: the blown-up path also drifts sideways and forward). The threshold on
-# $\kappa$ is an argument too, lowered here to 5 to show the ill-conditioned flag as the arm stretches out.
+# 1.73$ m for a purely vertical path; the blown-up path drifts too, so the table gives each flagged
+# sample's distance from the shoulder. The threshold on $\kappa$ is an argument too, lowered here to 5 to
+# show the ill-conditioned flag as the arm stretches out.
 
 # %%
 from skilllib.workspace import reach_shell
@@ -1359,7 +1360,7 @@ strict_dyn = [joint_dynamics(simple6, r, robots.GENERIC_QDD_LIMIT) for r in stri
 summary["feasible, every limit"] = verdict["feasible"].tolist() + [sum(d.feasible for d in strict_dyn)]
 summary["largest s, every limit"] = verdict["largest_s"].tolist() + [max(d.time_scale for d in strict_dyn)]
 summary["binding"] = verdict["binding"].tolist() + [", ".join(sorted({d.binding_limit for d in strict_dyn} - {None}))]
-summary.round(3)
+summary.rename(columns={"feasible": "feasible, velocity limits", "largest_time_scale": "largest s, velocity limits"}).round(3)
 
 # %% tags=["remove-cell"]
 # checks of the claims below (hidden on the site; nbmake fails when one stops holding)
@@ -1385,8 +1386,8 @@ assert bands["capped"].tolist() == [True] + [False] * 5 and round(change_b[0].mi
 #    velocity the hand's, sample by sample ($J\dot q = v$ holds to rounding error, and the IK path to
 #    within $10^{-6}$ m). Executed by a simulated controller, a prototype that no limit clips keeps its
 #    SPARC to within 0.004 and its path to within 2.5 mm. One that a limit clips does not: executed as
-#    recorded, the clipped accelerations lower SPARC by up to 0.13 on Simple6, more than the gap between
-#    neighbouring cluster centres, and leave the tool up to 89 mm behind its path (UR5). Slowed by the
+#    recorded, the clipped accelerations lower SPARC by up to 0.13 on Simple6, more than the largest gap
+#    between neighbouring cluster centres, and leave the tool up to 89 mm behind its path (UR5). Slowed by the
 #    time scale of every limit, each of them keeps the prototype's SPARC to within 0.004 and its path to
 #    within 2 mm. The hand's rotation was not recorded and is not transferred: the tool's orientation is
 #    held fixed.

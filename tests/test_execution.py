@@ -128,3 +128,32 @@ def test_assessment_and_block():
     with pytest.raises(ValueError, match="qdd_max must be a scalar or have 6 entries"):
         resolve_limits("puma560", robot, qdd_max=[1.0, 2.0])
     assert resolve_limits("panda", get_robot("panda").robot).qdd_limits[1] == 7.5
+
+
+def test_dynamics_figures():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from skilllib import figures
+
+    results = [transfer("puma560", *minimum_jerk_descent(0.2, vp), cluster=c) for c, vp in enumerate((0.6, 1.3))]
+    robot = get_robot("puma560").robot
+    assessed = assess(robot, results, dynamic_limits("puma560"))
+    dyns = [a.dynamics for a in assessed]
+    fig = figures.plot_joint_accelerations(dyns)
+    assert fig.axes[0].get_ylabel() == "joint acceleration (rad/s²)" and "(s)" in fig.axes[0].get_xlabel()
+    fig = figures.plot_joint_torques(dyns)
+    assert fig.axes[0].get_ylabel() == "joint torque / its limit"
+    limits = [ln for ln in fig.axes[0].get_lines() if ln.get_linestyle() == "--"]
+    assert {tuple(ln.get_ydata()) for ln in limits} == {(1, 1), (-1, -1)}  # the normalised limits
+    fig = figures.plot_executed_speed(assessed)
+    assert fig.axes[0].get_ylabel() == "tool speed (m/s)"
+    fig = figures.plot_time_scales({"Puma 560": dyns, "Simple6": [joint_dynamics(simple6(), transfer(
+        "simple6", *minimum_jerk_descent(0.2, 1.4)), qdd_limits=5.0)]})
+    assert fig.axes[0].get_ylabel() == "time scale s" and [ax.get_title() for ax in fig.axes] == ["Puma 560", "Simple6"]
+    with pytest.raises(ValueError, match="dynamic parameters"):
+        figures.plot_joint_torques([joint_dynamics(simple6(), transfer("simple6", *minimum_jerk_descent(0.2, 1.0)))])
+    for f in (figures.plot_joint_accelerations, figures.plot_executed_speed):
+        with pytest.raises(ValueError):
+            f([])
+    figures.plt.close("all")

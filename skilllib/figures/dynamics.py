@@ -83,6 +83,8 @@ def plot_joint_accelerations(dyns: Sequence[JointDynamics], titles: Sequence[str
         peak = np.nanmax(d.peak_abs_qdd)
         return f"max {peak:.1f} rad/s²" + ("" if s_a is None else f", $s_a$ = {s_a:.2f}")
 
+    if not dyns:
+        raise ValueError("plot_joint_accelerations needs at least one JointDynamics")
     return _joint_figure(dyns, lambda d: d.qdd, lambda d: d.qdd_limits, "joint acceleration", "rad/s²", describe,
                          f"{dyns[0].transfer.robot}: joint accelerations", titles, ncols)
 
@@ -93,8 +95,8 @@ def plot_joint_torques(dyns: Sequence[JointDynamics], titles: Sequence[str] | No
     trajectory against time (s), each divided by its joint's torque limit (so that +-1, dashed, is the
     limit of every joint); thin dotted lines: the same path traversed very slowly (gravity and Coulomb
     friction only: what no time scaling removes). Without torque limits the torques in N m."""
-    if any(d.tau is None for d in dyns):
-        raise ValueError("torques need an arm with dynamic parameters")
+    if not dyns or any(d.tau is None for d in dyns):
+        raise ValueError("torques need at least one trajectory on an arm with dynamic parameters")
     limited = all(d.tau_limits is not None for d in dyns)
 
     def norm(d: JointDynamics, tau: np.ndarray) -> np.ndarray:
@@ -173,10 +175,14 @@ def plot_time_scales(by_arm: Mapping[str, Sequence[JointDynamics]]) -> plt.Figur
     if not by_arm:
         raise ValueError("plot_time_scales needs at least one arm")
     n = len(by_arm)
-    fig, axs = plt.subplots(1, n, figsize=(max(3.2 * n, 6), 3.6), sharey=True, squeeze=False)
+    ncols = min(n, 2)
+    nrows = -(-n // ncols)
+    fig, axs = plt.subplots(nrows, ncols, figsize=(4.6 * ncols, 3.0 * nrows + 0.6), sharey=True, squeeze=False)
+    for ax in axs.flat[n:]:
+        ax.set_visible(False)
     markers = {"velocity": "o", "acceleration": "s", "torque": "^"}
     top = 1.0
-    for ax, (arm, dyns) in zip(axs[0], by_arm.items()):
+    for ax, (arm, dyns) in zip(axs.flat, by_arm.items()):
         x = np.arange(len(dyns))
         for m, name in enumerate(LIMIT_NAMES):
             vals = np.array([np.nan if (v := d.time_scales()[name]) is None else v for d in dyns], dtype=float)
@@ -193,11 +199,12 @@ def plot_time_scales(by_arm: Mapping[str, Sequence[JointDynamics]]) -> plt.Figur
         ax.axhline(1, color="0.5", lw=0.8, ls="--")
         ax.set_xticks(x, [str(d.transfer.cluster if d.transfer.cluster is not None else i)
                           for i, d in enumerate(dyns)])
-        ax.set_xlabel("cluster")
+        ax.set_xlabel("cluster", fontsize="small")
         ax.set_title(arm, fontsize="medium")
         ax.grid(alpha=0.3, axis="y")
     axs[0, 0].set_ylim(0.9, top * 1.08 + 0.1)
-    axs[0, 0].set_ylabel("time scale s")
+    for ax in axs[:, 0]:
+        ax.set_ylabel("time scale s")
     handles, labels = [], []
     for ax in axs.flat:
         for h, lab in zip(*ax.get_legend_handles_labels()):
@@ -208,5 +215,5 @@ def plot_time_scales(by_arm: Mapping[str, Sequence[JointDynamics]]) -> plt.Figur
     handles = [handles[i] for i in order] + [plt.Line2D([], [], color="k", lw=2)]
     labels = [labels[i] for i in order] + ["all limits (binding one named)"]
     fig.legend(handles, labels, loc="upper center", ncol=len(labels), frameon=False, fontsize="small")
-    fig.tight_layout(rect=(0, 0, 1, 0.9))
+    fig.tight_layout(rect=(0, 0, 1, 1 - 0.45 / fig.get_figheight()))
     return fig
