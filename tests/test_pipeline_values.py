@@ -9,8 +9,10 @@ option is changed on its own: what depends on it must change as the direct calls
 must stay identical. Finally the thresholds of the messages are probed at both sides of their edge, with
 the library's own constants.
 
-The files are small (at most 80 trials). The module takes about 20 s on a quiet 2-core VM: some 30
-silhouette sweeps (0.3 s each; run() always sweeps k = 2..16) and one run with figures (5 s).
+The files are small (at most 80 trials). The module took about 20 s on a quiet 2-core VM before the
+transfer gained dynamics and execution (issue 14), and 50 to 60 s on a busy one after: some 35 silhouette
+sweeps (0.3 s each; run() always sweeps k = 2..16), one run with figures (5 s), and the direct
+assessments the transfer block is checked against.
 """
 from __future__ import annotations
 
