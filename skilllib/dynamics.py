@@ -116,6 +116,7 @@ class JointDynamics:
     qdd_limits: np.ndarray | None
     tau_limits: np.ndarray | None
     robot: rtb.Robot = field(repr=False)
+    _scales: dict[float, float] = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def ok(self) -> np.ndarray:
@@ -162,9 +163,14 @@ class JointDynamics:
         return float(np.nanmax(np.abs(tau) / self.tau_limits))
 
     def _torque_scale(self, s_min: float) -> float:
-        """Smallest s >= s_min at which every torque is within its limit (inf when none is)."""
+        """Smallest s >= s_min at which every torque is within its limit (inf when none is); cached."""
         if self.tau_limits is None or not self.ok.any():
             return s_min
+        if s_min not in self._scales:
+            self._scales[s_min] = self._search_torque_scale(s_min)
+        return self._scales[s_min]
+
+    def _search_torque_scale(self, s_min: float) -> float:
         x0 = 1.0 / s_min
         if self._torque_ratio(x0) <= 1 + QD_LIMIT_RTOL:
             return s_min
@@ -177,9 +183,11 @@ class JointDynamics:
         i = int(inside[0])  # the fastest feasible grid point; the one before it (faster) is infeasible
         lo, hi = xs[i], xs[i - 1]
         x = brentq(lambda y: self._torque_ratio(y) - 1.0, lo, hi, xtol=1e-12 * hi, rtol=1e-12)
-        while self._torque_ratio(x) > 1 + QD_LIMIT_RTOL:  # keep the feasible side of the root
+        for _ in range(100):  # keep the feasible side of the root (a step or two of xtol)
+            if self._torque_ratio(x) <= 1 + QD_LIMIT_RTOL:
+                return 1.0 / x
             x -= 1e-12 * hi
-        return 1.0 / x
+        return 1.0 / lo
 
     def time_scales(self) -> dict[str, float | None]:
         """The smallest stretch s >= 1 each limit asks for alone: ``velocity`` (s_v), ``acceleration``

@@ -117,5 +117,19 @@ def transfer_block(assessments: Sequence[Assessment]) -> dict[str, Any]:
     return block
 
 
+def limits_text(dyn: JointDynamics) -> str:
+    """The limits of an assessment for a summary line: 'joint velocity limits 3.14 rad/s; acceleration
+    5 rad/s^2' (one value when every joint has the same, else one per joint; absent limits left out)."""
+    def one(what: str, lim: np.ndarray | None, unit: str) -> str:
+        if lim is None:
+            return ""
+        values = f"{lim[0]:.3g}" if np.all(lim == lim[0]) else ", ".join(f"{v:.3g}" for v in lim)
+        return f"{what} {values} {unit}"
+
+    parts = [one("joint velocity limits", dyn.transfer.qd_limits, "rad/s"), one("acceleration", dyn.qdd_limits, "rad/s^2"),
+             one("torque", dyn.tau_limits, "N m")]
+    return "; ".join(p for p in parts if p)
+
+
 def _list(x: np.ndarray | None) -> list[float] | None:
     return None if x is None else [float(v) for v in x]

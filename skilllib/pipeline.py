@@ -25,7 +25,7 @@ import pandas as pd
 
 from . import prototypes as pt
 from .data import MAX_RANGE_M, Recordings, read_recordings
-from .feasibility import Assessment, assess, resolve_limits, transfer_block
+from .feasibility import Assessment, assess, limits_text, resolve_limits, transfer_block
 from .features import CONTACT_WINDOW, ONSET_SPEED, segment, select, trial_features
 from .robots import RobotSetup, get_robot, qd_limits_vector
 from .sensitivity import SparcSensitivity, sparc_sensitivity
@@ -324,12 +324,8 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
         keep(fg.plot_prototype_profiles(run_.profiles, run_.prototypes.prototypes), "prototype_speed_profiles")
         keep(fg.plot_joint_velocities(run_.transfers), "joint_velocities")
         keep(fg.plot_frame_mapping(robot, run_.transfers[-1]), "frame_mapping")  # the fastest prototype
-        dyns = [a.dynamics for a in run_.assessments]
-        keep(fg.plot_joint_accelerations(dyns), "joint_accelerations")
-        if all(d.tau is not None for d in dyns):
-            keep(fg.plot_joint_torques(dyns), "joint_torques")
-        keep(fg.plot_executed_speed(run_.assessments), "executed_speed")
-        keep(fg.plot_time_scales({run_.transfers[0].robot: dyns}), "time_scales")
+        for fig, name in fg.dynamics_figures(run_.assessments):
+            keep(fig, name)
     if run_.sensitivity is not None:
         keep(fg.plot_sparc_sensitivity(run_.sensitivity), "sparc_sensitivity")
     return written
@@ -363,10 +359,7 @@ def summary_lines(run_: PipelineRun) -> list[str]:
                          f"{p['trial']} (PV {p['pv']:.2f} m/s, SPARC {p['sparc']:.2f}); "
                          f"peak |qd| {peak} rad/s, {verdict}")
         n_ok = sum(a.dynamics.feasible for a in run_.assessments)
-        dyn = run_.assessments[0].dynamics
-        limits = [_limits_text("joint velocity limits", run_.transfers[0].qd_limits, "rad/s"),
-                  _limits_text("acceleration", dyn.qdd_limits, "rad/s^2"), _limits_text("torque", dyn.tau_limits, "N m")]
-        lines.append(f"feasibility on {run_.transfers[0].robot} ({'; '.join(x for x in limits if x)}): "
+        lines.append(f"feasibility on {run_.transfers[0].robot} ({limits_text(run_.assessments[0].dynamics)}): "
                      f"{n_ok} of {fit.k} prototypes feasible as recorded")
     if run_.sensitivity is not None:
         sens = run_.sensitivity
@@ -377,13 +370,6 @@ def summary_lines(run_: PipelineRun) -> list[str]:
                          f"with this run's k = {sens.k} partition; {int(c['prototypes kept'])} of {sens.k} prototypes kept")
     lines += [f"note: {m}" for m in run_.messages]
     return lines
-
-
-def _limits_text(what: str, lim: np.ndarray | None, unit: str) -> str:
-    """'what 3.14 rad/s' (one value for all joints) or 'what 1, 2, ... rad/s'; '' for no limits."""
-    if lim is None:
-        return ""
-    return f"{what} {lim[0]:.3g} {unit}" if np.all(lim == lim[0]) else f"{what} {', '.join(f'{v:.3g}' for v in lim)} {unit}"
 
 
 #: Reasons whose numbers differ from trial to trial, and the kind they are counted as in the summary.

@@ -20,7 +20,13 @@ from .clusters import (
     plot_sparc_sensitivity,
     plot_stability,
 )
-from .dynamics import plot_executed_speed, plot_joint_accelerations, plot_joint_torques, plot_time_scales
+from .dynamics import (
+    dynamics_figures,
+    plot_executed_speed,
+    plot_joint_accelerations,
+    plot_joint_torques,
+    plot_time_scales,
+)
 from .experiment import (
     PARTICIPANT_COLORS,
     plot_contact_speeds,
@@ -53,5 +59,5 @@ __all__ = [
     "plot_stability", "plot_sparc_sensitivity", "plot_cluster_participants",
     "plot_robot_joints", "plot_robot_pose", "plot_simple6_figure", "plot_start_poses",
     "plot_joint_velocities", "plot_frame_mapping",
-    "plot_joint_accelerations", "plot_joint_torques", "plot_executed_speed", "plot_time_scales",
+    "plot_joint_accelerations", "plot_joint_torques", "plot_executed_speed", "plot_time_scales", "dynamics_figures",
 ]

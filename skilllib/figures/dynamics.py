@@ -168,6 +168,18 @@ def plot_executed_speed(assessments: Sequence[Assessment], titles: Sequence[str]
     return fig
 
 
+def dynamics_figures(assessments: Sequence[Assessment]) -> list[tuple[plt.Figure, str]]:
+    """The pipeline's figures of the assessments of one arm, with their file names: joint accelerations,
+    joint torques (arms with dynamic parameters), executed speed and time scales."""
+    dyns = [a.dynamics for a in assessments]
+    out = [(plot_joint_accelerations(dyns), "joint_accelerations")]
+    if all(d.tau is not None for d in dyns):
+        out.append((plot_joint_torques(dyns), "joint_torques"))
+    out.append((plot_executed_speed(assessments), "executed_speed"))
+    out.append((plot_time_scales({dyns[0].transfer.robot: dyns}), "time_scales"))
+    return out
+
+
 def plot_time_scales(by_arm: Mapping[str, Sequence[JointDynamics]]) -> plt.Figure:
     """The stretch s each limit asks for alone (markers: velocity, acceleration, torque; absent where the arm
     has no such limit) and the one that satisfies all (black dash, labelled with the binding limit), per
