@@ -571,7 +571,8 @@ print(sorted(results["figures"]))
 # %% tags=["remove-cell"]
 # checks of the claims above and below (hidden on the site; nbmake fails when one stops holding)
 FIGURES = {"trials_by_participant", "participant_features", "features", "sparc_vs_length", "silhouette_sweep",
-           "silhouettes_k", "clusters_pv_sparc", "prototype_speed_profiles", "joint_velocities", "frame_mapping"}
+           "silhouettes_k", "clusters_pv_sparc", "prototype_speed_profiles", "joint_velocities", "frame_mapping",
+           "joint_accelerations", "executed_speed", "time_scales"}
 stems = {Path(f).stem for f in results["figures"]}
 assert sorted(results["figures"]) == sorted(f"{s}.{e}" for s in stems for e in ("png", "svg")), (
     "text: 'Every figure ... is written ..., as PNG ... and SVG'")
@@ -590,6 +591,10 @@ assert stems == FIGURES, "text: the table of figure files (all but sparc_sensiti
 # | `prototype_speed_profiles` | the speed profile of every prototype (the paper's Fig. 2b) | chapter 3 |
 # | `joint_velocities` | the robot's joint velocities for every prototype, with the limits (the paper's Fig. 4) | chapter 4 |
 # | `frame_mapping` | where the fastest prototype's path lies in the robot's workspace | chapter 4 |
+# | `joint_accelerations` | the robot's joint accelerations for every prototype, with the limits | chapter 4 |
+# | `joint_torques` | only on an arm with dynamic parameters (`ur5`, `puma560`, `panda`): every joint's torque over its limit | chapter 4 |
+# | `executed_speed` | the prototype's tool speed against the simulated execution, as recorded and slowed by its time scale | chapter 4 |
+# | `time_scales` | the time scale each limit asks for and the one of every limit, with the binding limit | chapter 4 |
 # | `sparc_sensitivity` | only with `--sensitivity`: each selected trial's SPARC under the other settings against this run's; the silhouette sweep under every setting | chapter 3 |
 #
 # Look at `trials_by_participant` first: it shows at once whether the export is right (y should fall

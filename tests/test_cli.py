@@ -26,7 +26,8 @@ ROOT = Path(__file__).resolve().parents[1]
 README_KEYS = {"skilllib_version", "filter", "dataset", "sparc_params", "contact_speed_window", "trials", "n_selected", "silhouette",
                "silhouette_valid_k", "k", "scaling", "clusters", "transfer", "messages", "figures"}
 FIGURES = ("features", "trials_by_participant", "participant_features", "sparc_vs_length", "silhouette_sweep",
-           "silhouettes_k", "clusters_pv_sparc", "prototype_speed_profiles", "joint_velocities", "frame_mapping")
+           "silhouettes_k", "clusters_pv_sparc", "prototype_speed_profiles", "joint_velocities", "frame_mapping",
+           "joint_accelerations", "executed_speed", "time_scales")
 TRIAL_KEYS = {"participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
               "sparc_band_end_hz", "sparc_capped", "ldlj", "resampled"}
 

@@ -3,13 +3,16 @@
 Every number of results.json is compared with a direct call of the library on the same recordings file:
 :func:`skilllib.data.read_recordings` + :func:`skilllib.features.trial_features` for the trials,
 :func:`skilllib.prototypes.silhouette_sweep` / :func:`~skilllib.prototypes.fit_prototypes` for the
-clustering, :func:`skilllib.transfer.transfer` on each prototype's own segment for the transfer. Then each
+clustering, :func:`skilllib.transfer.transfer` on each prototype's own segment for the transfer and
+:func:`skilllib.feasibility.assess_one` for its dynamics, limits and execution. Then each
 option is changed on its own: what depends on it must change as the direct calls say, everything else
 must stay identical. Finally the thresholds of the messages are probed at both sides of their edge, with
 the library's own constants.
 
-The files are small (at most 80 trials). The module takes about 20 s on a quiet 2-core VM: some 30
-silhouette sweeps (0.3 s each; run() always sweeps k = 2..16) and one run with figures (5 s).
+The files are small (at most 80 trials). The module took about 20 s on a quiet 2-core VM before the
+transfer gained dynamics and execution (issue 14), and 50 to 60 s on a busy one after: some 35 silhouette
+sweeps (0.3 s each; run() always sweeps k = 2..16), one run with figures (5 s), and the direct
+assessments the transfer block is checked against.
 """
 from __future__ import annotations
 
@@ -31,8 +34,9 @@ from skilllib import prototypes as pt
 from skilllib.__main__ import main
 from skilllib.cohort import CohortModel, generate_cohort
 from skilllib.data import read_recordings, write_recordings
+from skilllib.feasibility import assess_one, resolve_limits
 from skilllib.features import CONTACT_WINDOW, segment, select, trial_features
-from skilllib.robots import get_robot
+from skilllib.robots import dynamic_limits, get_robot
 from skilllib.sensitivity import sparc_sensitivity
 from skilllib.smoothness import (
     DEFAULT_AMP_TH,
@@ -46,7 +50,8 @@ REL = 1e-12  # floats that pass through JSON (repr round-trips exactly; this onl
 FEATURES = ("pv", "contact_speed", "duration", "sparc", "sparc_band_end_hz", "ldlj")
 TRIAL_KEYS = {"participant", "trial", "status", "reason", *FEATURES, "sparc_capped", "resampled"}
 FIGURES = ("features", "trials_by_participant", "participant_features", "sparc_vs_length", "silhouette_sweep",
-           "silhouettes_k", "clusters_pv_sparc", "prototype_speed_profiles", "joint_velocities", "frame_mapping")
+           "silhouettes_k", "clusters_pv_sparc", "prototype_speed_profiles", "joint_velocities", "frame_mapping",
+           "joint_accelerations", "executed_speed", "time_scales")
 #: The base file: 5 participants x 16 trials at 60 Hz; its 27 selected trials make k = 6 silhouette-valid
 #: without shrinking the sweep, and K-means with random_state 1 partitions them differently from 0.
 BASE_SEED, BASE_MODEL = 9, CohortModel(n_participants=5, n_trials=16, fs=60.0)
@@ -233,21 +238,31 @@ def check_clustering(res: dict, d: Direct, k: int, scaling: str = "raw", random_
 
 
 def check_transfer(res: dict, d: Direct, fit: pt.PrototypeResult, robot: str = "simple6",
-                   qd_limits: Any = None) -> None:
+                   qd_limits: Any = None, qdd_limits: Any = None, tau_limits: Any = None) -> None:
     """The transfer block: the robot, its q0, the limits, and per cluster (in cluster order) the summary of
-    transfer() on that cluster's own prototype segment."""
+    transfer() on that cluster's own prototype segment, assessed (dynamics, every limit, execution) by
+    assess_one with the limits and SPARC parameters of the run."""
     setup = get_robot(robot)
     tr = res["transfer"]
-    want_lim = setup.qd_limits if qd_limits is None else np.broadcast_to(np.asarray(qd_limits, float), setup.q0.shape)
+    n = setup.q0.size
+    want_lim = setup.qd_limits if qd_limits is None else np.broadcast_to(np.asarray(qd_limits, float), (n,))
+    book = dynamic_limits(robot)
+    want_qdd = book.qdd_limits if qdd_limits is None else np.broadcast_to(np.asarray(qdd_limits, float), (n,))
+    want_tau = book.tau_limits if tau_limits is None else np.broadcast_to(np.asarray(tau_limits, float), (n,))
     assert tr["robot"] == setup.robot.name
     assert tr["q0_deg"] == pytest.approx(np.rad2deg(setup.q0), abs=1e-9)
     assert tr["qd_limits"] == [float(v) for v in want_lim]
+    assert tr["qdd_limits"] == (None if want_qdd is None else [float(v) for v in want_qdd])
+    assert tr["tau_limits"] == (None if want_tau is None else [float(v) for v in want_tau])
+    assert tr["execution"] == {"control_rate_hz": 500.0, "actuator_bandwidth_hz": 100.0}
+    limits = resolve_limits(robot, setup.robot, qdd_limits, tau_limits)
     assert [p["cluster"] for p in tr["prototypes"]] == list(range(fit.k))
     for c, entry in enumerate(tr["prototypes"]):
         seg = segment(d.rec, _py(fit.prototypes.at[c, "participant"]), _py(fit.prototypes.at[c, "trial"]))
-        want = transfer(setup.robot, seg.t - seg.t[0], seg.pos, seg.vel, q0=setup.q0,
-                        qd_limits=np.asarray(tr["qd_limits"]), cluster=c).summary()
-        assert len(entry["peak_abs_qd"]) == setup.robot.n
+        r = transfer(setup.robot, seg.t - seg.t[0], seg.pos, seg.vel, q0=setup.q0,
+                     qd_limits=np.asarray(tr["qd_limits"]), cluster=c)
+        want = assess_one(setup.robot, r, limits, sparc_params=d.params).summary()
+        assert len(entry["peak_abs_qd"]) == len(entry["peak_abs_qdd"]) == setup.robot.n
         _same(entry, _json(want), f"transfer.prototypes[{c}]")
 
 
@@ -288,11 +303,12 @@ def check_messages(res: dict, d: Direct, k_requested: int, **extra: int) -> None
 
 
 def check_all(res: dict, d: Direct, k_requested: int = pt.DEFAULT_K, scaling: str = "raw", random_state: int = 0,
-              robot: str = "simple6", qd_limits: Any = None) -> pt.PrototypeResult:
+              robot: str = "simple6", qd_limits: Any = None, qdd_limits: Any = None,
+              tau_limits: Any = None) -> pt.PrototypeResult:
     check_trials(res, d)
     k = min(k_requested, int(d.sweep.ks[-1]))
     fit = check_clustering(res, d, k, scaling, random_state)
-    check_transfer(res, d, fit, robot, qd_limits)
+    check_transfer(res, d, fit, robot, qd_limits, qdd_limits, tau_limits)
     check_messages(res, d, k_requested)
     return fit
 
@@ -467,40 +483,59 @@ def test_robot_changes_the_transfer_only(runs, base_file, base, direct):
 
 
 def _expected_feasibility(base: dict, lim: np.ndarray) -> tuple[list[bool], list[float]]:
-    """feasible and time_scale of the base run's prototypes under limits ``lim`` (rad/s, per joint)."""
-    feasible, scale = [], []
+    """Whether the velocity limits ``lim`` (rad/s, per joint) hold, and the stretch they ask for
+    (time_scales.velocity), for the base run's prototypes."""
+    within, scale = [], []
     for p in base["transfer"]["prototypes"]:
         peak = np.asarray(p["peak_abs_qd"], dtype=float)
         assert np.all(np.abs(peak / lim - 1) > 1e-6)  # no peak at a limit, where tolerances would decide
-        feasible.append(not p["flags"] and bool(np.all(peak <= lim * (1 + 1e-9))))
+        within.append(bool(np.all(peak <= lim * (1 + 1e-9))))
         scale.append(float(max(1.0, np.max(peak / lim))))
-    return feasible, scale
+    return within, scale
 
 
-def _check_limits_change_only_feasibility(res: dict, base: dict, lim: np.ndarray) -> None:
-    varying = ("transfer.qd_limits", "transfer.prototypes.*.feasible", "transfer.prototypes.*.time_scale")
+def _check_limits_change_only_feasibility(res: dict, base: dict, lim: np.ndarray, d: Direct) -> None:
+    """Only what depends on the velocity limits changed: feasible and time_scale (the velocity limits' own)
+    and time_scales.velocity are peak / limit, the stretch of all limits the larger of it and the
+    (unchanged) acceleration stretch (Simple6 has no torques), feasible_all_limits exactly when that is 1,
+    the binding limit the one that asks for more; the executions are those of the direct calls."""
+    varying = ("transfer.qd_limits", "transfer.prototypes.*.feasible", "transfer.prototypes.*.time_scale",
+               "transfer.prototypes.*.time_scales.velocity", "transfer.prototypes.*.binding_limit",
+               "transfer.prototypes.*.feasible_all_limits", "transfer.prototypes.*.time_scale_all_limits",
+               "transfer.prototypes.*.executed", "transfer.prototypes.*.executed_time_scaled")
     assert _without(res, *varying) == _without(base, *varying)  # peaks, det J, cond J, flags, clusters, ...
     assert res["transfer"]["qd_limits"] == [float(v) for v in lim]
-    feasible, scale = _expected_feasibility(base, lim)
-    assert [p["feasible"] for p in res["transfer"]["prototypes"]] == feasible
-    for i, (p, s) in enumerate(zip(res["transfer"]["prototypes"], scale)):
-        _num(p["time_scale"], s, f"time_scale[{i}]")
+    within, scale = _expected_feasibility(base, lim)
+    for i, (p, p0, s_v, ok) in enumerate(zip(res["transfer"]["prototypes"], base["transfer"]["prototypes"], scale,
+                                             within)):
+        _num(p["time_scales"]["velocity"], s_v, f"time_scales.velocity[{i}]")
+        _num(p["time_scale"], s_v, f"time_scale[{i}]")
+        assert p["feasible"] is (not p["flags"] and ok)
+        s_a = p0["time_scales"]["acceleration"]
+        _num(p["time_scale_all_limits"], max(s_v, s_a), f"time_scale_all_limits[{i}]")
+        assert p["feasible_all_limits"] is (not p["flags"] and max(s_v, s_a) == 1.0)
+        assert p["binding_limit"] == (None if max(s_v, s_a) == 1.0 else "velocity" if s_v > s_a else "acceleration")
+    check_transfer(res, d, check_clustering(res, d, pt.DEFAULT_K), qd_limits=lim)
 
 
-def test_scalar_qd_max_changes_feasibility_and_time_scale_only(runs, base_file, base):
-    """A limit between the prototypes' peaks: those above it infeasible with time_scale = peak / limit.
-    Catches: qd_max ignored (or reported but not used), peaks that depend on the limit."""
+def test_scalar_qd_max_changes_feasibility_and_time_scale_only(runs, base_file, base, direct):
+    """A limit between the prototypes' peaks: those above it need time_scales.velocity = peak / limit, and
+    the velocity binds where that exceeds the acceleration's stretch. Catches: qd_max ignored (or reported
+    but not used), peaks that depend on the limit, the velocity stretch not combined with the others."""
     peaks = sorted(max(p["peak_abs_qd"]) for p in base["transfer"]["prototypes"])
     qd = (peaks[len(peaks) // 2 - 1] + peaks[len(peaks) // 2]) / 2
-    assert all(p["feasible"] for p in base["transfer"]["prototypes"])
+    assert all(p["time_scales"]["velocity"] == 1.0 for p in base["transfer"]["prototypes"])
     res = runs(base_file, qd_max=qd)[0]
     lim = np.full(6, qd)
-    _check_limits_change_only_feasibility(res, base, lim)
-    feasible = [p["feasible"] for p in res["transfer"]["prototypes"]]
-    assert any(feasible) and not all(feasible)
+    _check_limits_change_only_feasibility(res, base, lim, direct())
+    within = [p["time_scales"]["velocity"] == 1.0 for p in res["transfer"]["prototypes"]]
+    assert any(within) and not all(within)
+    slow = runs(base_file, qd_max=peaks[0] / 3)[0]  # a third of the smallest peak: s_v >= 3 everywhere
+    _check_limits_change_only_feasibility(slow, base, np.full(6, peaks[0] / 3), direct())
+    assert {p["binding_limit"] for p in slow["transfer"]["prototypes"]} == {"velocity"}
 
 
-def test_per_joint_qd_max_applies_each_limit_to_its_joint(runs, base_file, base):
+def test_per_joint_qd_max_applies_each_limit_to_its_joint(runs, base_file, base, direct):
     """Limits that differ per joint (each joint's median peak over the prototypes). Catches: the limits
     applied to the wrong joints (reversed, or the first one for all), the largest or smallest used."""
     peaks = np.array([p["peak_abs_qd"] for p in base["transfer"]["prototypes"]])
@@ -510,7 +545,44 @@ def test_per_joint_qd_max_applies_each_limit_to_its_joint(runs, base_file, base)
     for wrong in (lim[::-1], np.full(6, lim[0]), np.full(6, lim.max()), np.full(6, lim.min())):
         assert _expected_feasibility(base, wrong) != expected  # each such defect would be seen
     res = runs(base_file, qd_max=list(lim))[0]
-    _check_limits_change_only_feasibility(res, base, lim)
+    _check_limits_change_only_feasibility(res, base, lim, direct())
+
+
+def test_qdd_max_changes_the_acceleration_stretch_only(runs, base_file, base, direct):
+    """An acceleration limit between the prototypes' peak accelerations: the acceleration stretch is
+    sqrt(peak / limit), everything computed before the limits identical. Catches: qdd_max ignored or
+    applied as a velocity limit (no square root), the book's 5 rad/s^2 used anyway."""
+    peaks = sorted(max(p["peak_abs_qdd"]) for p in base["transfer"]["prototypes"])
+    qdd = (peaks[1] + peaks[2]) / 2
+    res = runs(base_file, qdd_max=qdd)[0]
+    varying = ("transfer.qdd_limits", "transfer.prototypes.*.feasible_all_limits",
+               "transfer.prototypes.*.time_scale_all_limits",
+               "transfer.prototypes.*.time_scales.acceleration", "transfer.prototypes.*.binding_limit",
+               "transfer.prototypes.*.executed", "transfer.prototypes.*.executed_time_scaled")
+    assert _without(res, *varying) == _without(base, *varying)
+    assert res["transfer"]["qdd_limits"] == [qdd] * 6
+    for i, p in enumerate(res["transfer"]["prototypes"]):
+        _num(p["time_scales"]["acceleration"], max(1.0, np.sqrt(max(p["peak_abs_qdd"]) / qdd)), f"[{i}]")
+    assert sum(p["time_scales"]["acceleration"] == 1.0 for p in res["transfer"]["prototypes"]) == 2
+    d = direct()
+    check_transfer(res, d, check_clustering(res, d, pt.DEFAULT_K), qdd_limits=qdd)
+
+
+def test_torques_and_tau_max_on_the_puma(runs, base_file, base, direct):
+    """The Puma 560 (dynamic parameters): torques, the book's torque limits and no acceleration limit; with
+    torque limits below the prototypes' peaks the torque binds, at the stretch assess_one finds. Catches:
+    tau_max ignored, torques of another arm, torque limits reported but not applied."""
+    d = direct()
+    res = runs(base_file, robot="puma560")[0]
+    fit = check_clustering(res, d, pt.DEFAULT_K)
+    check_transfer(res, d, fit, robot="puma560")
+    assert res["transfer"]["qdd_limits"] is None and res["transfer"]["tau_limits"][1] == 186.4
+    assert all(len(p["peak_abs_tau"]) == 6 for p in res["transfer"]["prototypes"])
+    tau = np.max([p["peak_abs_tau"] for p in res["transfer"]["prototypes"]], axis=0) * 0.8
+    low = runs(base_file, robot="puma560", tau_max=list(tau))[0]
+    check_transfer(low, d, fit, robot="puma560", tau_limits=tau)
+    assert "torque" in {p["binding_limit"] for p in low["transfer"]["prototypes"]}
+    assert base["transfer"]["tau_limits"] is None and base["transfer"]["prototypes"][0]["peak_abs_tau"] is None
 
 
 def test_scaling_changes_the_clustering_as_fit_prototypes_does(runs, base_file, base, direct):
@@ -555,9 +627,11 @@ def test_sparc_parameters_reach_the_clustering_and_transfer(runs, base_file, bas
 #: Many options at once: the sensitivity setting inherits the run's amp_th and padlevel and its clustering
 #: the run's k, scaling and seed; the command line must write the same results.json as run().
 UR5_LIMITS = [2.0, 2.5, 3.0, 1.5, 1.0, 3.5]
-COMBINED = {"k": 4, "robot": "ur5", "qd_max": UR5_LIMITS, "scaling": "standard", "random_state": 1,
-            "amp_th": 0.08, "padlevel": 3, "sensitivity": [{"fc": 10.0}]}
-COMBINED_ARGV = ["--k", "4", "--robot", "ur5", "--qd-max", *map(str, UR5_LIMITS), "--scaling", "standard",
+UR5_TAU = [120.0, 120.0, 100.0, 20.0, 20.0, 20.0]
+COMBINED = {"k": 4, "robot": "ur5", "qd_max": UR5_LIMITS, "qdd_max": 4.0, "tau_max": UR5_TAU, "scaling": "standard",
+            "random_state": 1, "amp_th": 0.08, "padlevel": 3, "sensitivity": [{"fc": 10.0}]}
+COMBINED_ARGV = ["--k", "4", "--robot", "ur5", "--qd-max", *map(str, UR5_LIMITS), "--qdd-max", "4",
+                 "--tau-max", *map(str, UR5_TAU), "--scaling", "standard",
                  "--seed", "1", "--amp-th", "0.08", "--padlevel", "3"]  # without the sensitivity (time)
 
 
@@ -582,7 +656,7 @@ def test_sensitivity_uses_the_runs_parameters_k_scaling_and_seed(runs, base_file
         wrong = pt.fit_prototypes(other_sel, 4, scaling=scaling, random_state=seed).silhouette
         assert wrong != pytest.approx(want["settings"][1]["silhouette"]["4"], rel=1e-9)
     check_all(res, d, k_requested=4, scaling="standard", random_state=1, robot="ur5",
-              qd_limits=UR5_LIMITS)
+              qd_limits=UR5_LIMITS, qdd_limits=4.0, tau_limits=UR5_TAU)
 
 
 @pytest.mark.slow
@@ -610,7 +684,8 @@ def test_figures_are_written_only_when_asked_and_change_nothing_else(tmp_path, r
 
 NO_READ_OPTIONS = {"columns": None, "units": None, "up_axis": None, "marker": None, "contact_channel": None,
                    "contact_height": None, "name_pattern": None}
-CLI_DEFAULTS = {"data": None, "k": pt.DEFAULT_K, "robot": "simple6", "qd_max": None, "scaling": "raw",
+CLI_DEFAULTS = {"data": None, "k": pt.DEFAULT_K, "robot": "simple6", "qd_max": None, "qdd_max": None,
+                "tau_max": None, "scaling": "raw",
                 "random_state": 0, "fc": DEFAULT_FC, "amp_th": DEFAULT_AMP_TH, "padlevel": DEFAULT_PADLEVEL,
                 "sensitivity": None, "lowpass": "auto", "read_options": NO_READ_OPTIONS, "write_figures": True}
 
@@ -622,6 +697,10 @@ CLI_CASES = [
     (["--robot", "panda"], {"robot": "panda"}),
     (["--qd-max", "1.5"], {"qd_max": 1.5}),
     (["--qd-max", "1", "2", "3", "4", "5", "6"], {"qd_max": [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]}),
+    (["--qdd-max", "2.5"], {"qdd_max": 2.5}),
+    (["--qdd-max", "1", "2", "3", "4", "5", "6"], {"qdd_max": [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]}),
+    (["--tau-max", "50"], {"tau_max": 50.0}),
+    (["--tau-max", "1", "2", "3", "4", "5", "6"], {"tau_max": [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]}),
     (["--scaling", "standard"], {"scaling": "standard"}),
     (["--seed", "5"], {"random_state": 5}),
     (["--fc", "12.5"], {"fc": 12.5}),
@@ -659,7 +738,8 @@ def test_each_flag_reaches_run_as_its_option_and_no_other(monkeypatch, capsys, t
     got = calls[0]
     assert got.pop("out") == str(tmp_path / "o") and callable(got.pop("progress"))
     assert got == {**CLI_DEFAULTS, **changed}
-    assert type(got["qd_max"]) is type({**CLI_DEFAULTS, **changed}["qd_max"])
+    for key in ("qd_max", "qdd_max", "tau_max"):
+        assert type(got[key]) is type({**CLI_DEFAULTS, **changed}[key])
 
 
 def test_cli_writes_what_run_computes(tmp_path, capsys, runs, base_file):

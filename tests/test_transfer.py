@@ -20,6 +20,7 @@ from scipy.optimize import brentq  # noqa: E402
 from scipy.spatial.transform import Rotation  # noqa: E402
 
 import skilllib.transfer as tr  # noqa: E402
+from skilllib.ik import IK_CHAIN  # noqa: E402
 from skilllib import sparc  # noqa: E402
 from skilllib.robots import ROBOT_NAMES, default_pose, get_robot, simple6  # noqa: E402
 from skilllib.transfer import (  # noqa: E402
@@ -224,8 +225,10 @@ def test_unreachable_path_is_flagged_not_silent():
     t, p, v = minimum_jerk_descent(2.9, 1.0)  # 2 m down from Simple6's tool: beyond its 2 m reach
     r = transfer("simple6", t, p, v, cluster=4)
     bad = [f["sample"] for f in r.flags]
-    assert bad and all(f["reason"].startswith("ik_failed") for f in r.flags)
-    assert bad == list(range(bad[0], len(t)))  # the end of the path is out of reach
+    assert bad and all(f["reason"].startswith("unreachable") for f in r.flags)
+    beyond = np.flatnonzero(np.linalg.norm(r.x_base, axis=1) > 2.0)  # Simple6: 2 m from its shoulder at the origin
+    assert bad == beyond.tolist() == list(range(bad[0], len(t)))  # exactly the end of the path beyond 2 m
+    assert "m from the shoulder; the arm reaches 0 to 2 m" in r.flags[0]["reason"]
     nan_rows = np.nonzero(np.isnan(r.qd).any(axis=1))[0]
     assert nan_rows.tolist() == bad  # NaN only where flagged
     assert np.all(np.isfinite(r.qd[: bad[0]]))  # the rest still computed
@@ -284,7 +287,7 @@ def test_singular_start_pose_is_flagged():
 _E23 = np.array([0.0, 1.0, -1.0, 0.0, 0.0, 0.0])  # Simple6: q2 + d, q3 - d keeps the forearm direction,
 #                                                   so the tool orientation is unchanged and the tool
 #                                                   point moves by 2 sin(d / 2) (1 m upper arm)
-_REAL_IKINE_LM = rtb.ETS.ikine_LM
+_REAL_SOLVERS = {name: getattr(rtb.ETS, name) for name in ("ikine_LM", "ikine_GN")}
 
 
 def _path_through(ets, qs) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -300,21 +303,24 @@ def _one_sample() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def _patch_ik(monkeypatch, answer=None) -> list[dict]:
-    """Replace ETS.ikine_LM by a recording wrapper. ``answer(i)`` gives the q (rad) the i-th call returns,
-    claimed as a success, or None to run the real solver. Returns the list of calls (q0, keyword
-    arguments and the solution)."""
+    """Replace the IK solvers of the chain (ETS.ikine_LM, ETS.ikine_GN) by a recording wrapper.
+    ``answer(i)`` gives the q (rad) the i-th call returns, claimed as a success, or None to run the real
+    solver. Returns the list of calls (solver, q0, keyword arguments and the solution)."""
     calls: list[dict] = []
 
-    def fake(self, Tep, q0=None, **kw):
-        q = None if answer is None else answer(len(calls))
-        if q is None:
-            sol = _REAL_IKINE_LM(self, Tep, q0=q0, **kw)
-        else:
-            sol = IKSolution(q=np.asarray(q, dtype=float), success=True, reason="fake")
-        calls.append({"q0": np.array(q0, dtype=float), **kw, "sol": sol})
-        return sol
+    def patched(name):
+        def fake(self, Tep, q0=None, **kw):
+            q = None if answer is None else answer(len(calls))
+            if q is None:
+                sol = _REAL_SOLVERS[name](self, Tep, q0=q0, **kw)
+            else:
+                sol = IKSolution(q=np.asarray(q, dtype=float), success=True, reason="fake")
+            calls.append({"solver": name, "q0": np.array(q0, dtype=float), **kw, "sol": sol})
+            return sol
+        return fake
 
-    monkeypatch.setattr(rtb.ETS, "ikine_LM", fake)
+    for name in _REAL_SOLVERS:
+        monkeypatch.setattr(rtb.ETS, name, patched(name))
     return calls
 
 
@@ -396,7 +402,10 @@ def test_ik_residual_tolerance_edge(monkeypatch):
             assert r.flags == [] and len(calls) == 1
             np.testing.assert_array_equal(r.q[0], q_bad)
         else:
-            assert len(calls) == 2  # the seeded try and the restarts were both rejected
+            # every search of the chain was tried and rejected: seeded LM, then the restarting searches
+            assert [(c["solver"], c["slimit"], c["seed"], c.get("method"), c.get("pinv")) for c in calls] == \
+                [("ikine_LM", 1, None, None, None), ("ikine_LM", IK_RESTARTS + 1, 0, None, None),
+                 ("ikine_GN", IK_RESTARTS + 1, 0, None, True), ("ikine_LM", IK_RESTARTS + 1, 0, "sugihara", None)]
             assert _reasons(r, 0) == ["ik_failed"] and f"{dp:.3g} m" in r.flags[0]["reason"]
             assert np.all(np.isnan(r.q[0])) and np.all(np.isnan(r.qd[0]))
 
@@ -432,7 +441,7 @@ def test_non_finite_ik_result_is_skipped(monkeypatch):
     # NaN from every attempt: the sample fails, nothing of it is computed
     calls = _patch_ik(monkeypatch, lambda i: np.full(6, np.nan))
     r = transfer(simple6(), [0.0], np.zeros((1, 3)), v, q0=q0, qd_limits=np.pi)
-    assert len(calls) == 2 and _reasons(r, 0) == ["ik_failed"]
+    assert len(calls) == len(IK_CHAIN) and _reasons(r, 0) == ["ik_failed"]
     assert np.all(np.isnan(r.q)) and np.all(np.isnan(r.qd)) and np.isnan(r.det_j[0]) and np.isnan(r.cond_j[0])
     assert not np.isfinite(r.ik_residual_m[0]) and not r.feasible
     json.dumps(r.summary(), allow_nan=False)
@@ -452,21 +461,54 @@ def test_arm_with_fewer_than_six_joints_is_rejected(n):
         transfer(arm, *_one_sample(), q0=np.zeros(n), qd_limits=1.0)
 
 
-def test_restarts_only_after_a_solved_sample(monkeypatch):
+def test_out_of_reach_is_unreachable_without_a_search(monkeypatch):
     # Simple6 reaches 2 m from its shoulder; the tool starts 1 m in front of it, so 2.5 m below the start is
-    # out of reach. Path: start, out, out, start, out.
+    # out of reach (sqrt(1 + 2.5^2) = 2.69 m). Path: start, out, out, start, out: the three out-of-reach
+    # samples are "unreachable" and not searched; the return to the start is solved by the seeded search.
     calls = _patch_ik(monkeypatch)
     p = np.array([[0, 0, 0], [0, -2.5, 0], [0, -2.5, 0], [0, 0, 0], [0, -2.5, 0]], dtype=float)
     r = transfer("simple6", np.arange(5) / 60, p, np.zeros((5, 3)))
     assert [f["sample"] for f in r.flags] == [1, 2, 4]
-    assert all(f["reason"].startswith("ik_failed") for f in r.flags)
-    # restarts (seeded with the sample index) for the first failure after a solved sample only
-    R = IK_RESTARTS + 1
-    assert [(c["slimit"], c["seed"]) for c in calls] == [(1, None), (1, None), (R, 1), (1, None), (1, None),
-                                                         (1, None), (R, 4)]
-    for c in calls:  # every search starts from the last solved pose (q0), not from a failed attempt
+    assert all(f["reason"] == "unreachable: the target lies 2.693 m from the shoulder; the arm reaches 0 to 2 m"
+               for f in r.flags)
+    assert [(c["solver"], c["slimit"]) for c in calls] == [("ikine_LM", 1), ("ikine_LM", 1)]  # samples 0 and 3
+    for c in calls:  # every search starts from the last solved pose (q0)
         np.testing.assert_array_equal(c["q0"], default_pose())
     np.testing.assert_allclose(r.q[3], default_pose(), atol=1e-12)
+    assert np.all(np.isnan(r.qd[[1, 2, 4]])) and np.all(np.isnan(r.ik_residual_m[[1, 2, 4]]))
+
+
+def test_ik_failure_inside_the_reach_names_the_conditioning(monkeypatch):
+    # every solver returns a pose 1 mm off for sample 2 (inside the reach): an IK failure, not "unreachable",
+    # with the best residual and cond J at the last solved sample (1); the next sample is solved again
+    ets, q0 = simple6().ets(), default_pose()
+    qs = [q0, q0 + 0.05 * _E23, q0 + 0.1 * _E23, q0 + 0.15 * _E23]
+    off = q0 + 0.1 * _E23 + np.r_[0, 0, 0.001, 0, 0, 0]
+    n_fail = len(IK_CHAIN)
+    calls = _patch_ik(monkeypatch, lambda i: off if 2 <= i < 2 + n_fail else None)
+    r = transfer(simple6(), *_path_through(ets, qs), q0=q0, qd_limits=np.pi)
+    assert [(f["sample"], f["reason"].split(":")[0]) for f in r.flags] == [(2, "ik_failed")]
+    reason = r.flags[0]["reason"]
+    assert f"cond J = {_cond(ets, r.q[1]):.3g} at the last solved sample 1" in reason
+    assert "although the target lies" in reason and "the arm reaches 0 to 2 m" in reason
+    assert f"best position residual {r.ik_residual_m[2]:.3g} m" in reason and r.ik_residual_m[2] > 1e-4
+    assert len(calls) == 3 + n_fail and np.all(np.isnan(r.q[2]))
+    np.testing.assert_allclose(r.q[3], qs[3], atol=1e-7)
+    np.testing.assert_array_equal(calls[-1]["q0"], r.q[1])  # sample 3 searched from the last solved pose
+
+
+def test_ik_near_the_elbow_singularity_is_solved_by_the_chain():
+    # targets approaching Simple6's 2 m reach along the stretched arm (cond J grows without bound): every
+    # one inside the reach is solved to the tolerance, none is called unreachable; beyond 2 m all are
+    d = np.array([0.0, 0.5, 1.0, 1.5, 1.7, 1.72, 1.73, 1.732, 1.7320508, 1.74, 1.8])  # descents below (1, 0, 0)
+    p = np.c_[np.zeros_like(d), -d, np.zeros_like(d)]
+    r = transfer("simple6", np.arange(d.size) / 60, p, np.zeros_like(p))
+    inside = np.hypot(1.0, d) <= 2.0 + 1e-6
+    assert inside.sum() == 9 and not inside[-2:].any()
+    assert {f["sample"] for f in r.flags if f["reason"].startswith("unreachable")} == {9, 10}
+    assert not [f for f in r.flags if f["reason"].startswith("ik_failed")]
+    assert np.nanmax(r.ik_residual_m[inside]) <= IK_RESIDUAL_TOL_M
+    assert r.cond_j[8] > 100  # the last one is practically at the singularity
 
 
 def test_condition_number_edges(monkeypatch):
