@@ -87,6 +87,9 @@ def _parser() -> argparse.ArgumentParser:
     g.add_argument("--marker", metavar="NAME", help="the C3D/TRC marker to use (default: the only one)")
     g.add_argument("--contact-channel", metavar="NAME",
                    help="C3D analog channel or event that marks contact (default: 'contact' when present)")
+    g.add_argument("--contact-threshold", type=float, metavar="V",
+                   help="the C3D analog level above which a frame is in contact (default: halfway between the "
+                        "channel's minimum and maximum)")
     g.add_argument("--contact-height", type=float, metavar="M",
                    help="without a contact signal: contact from the first sample at or below this height (m)")
     g.add_argument("--name-pattern", metavar="REGEX",
@@ -144,7 +147,8 @@ def _run(args: argparse.Namespace) -> int:
 
     qd_max = one_or_all(args.qd_max)
     read_options = {"columns": args.columns, "units": args.units, "up_axis": args.up_axis, "marker": args.marker,
-                    "contact_channel": args.contact_channel, "contact_height": args.contact_height,
+                    "contact_channel": args.contact_channel, "contact_threshold": args.contact_threshold,
+                    "contact_height": args.contact_height,
                     "name_pattern": args.name_pattern}
     try:
         result = run(args.data, args.out, k=args.k, robot=args.robot, qd_max=qd_max,

@@ -176,7 +176,7 @@ def load_input(data: str | Path | pd.DataFrame | Recordings | None = None,
     """The recordings of ``data``: the shipped cohort (None), :class:`Recordings` as they are, a DataFrame
     (validated), or a path: a CSV (compressed or not), a C3D or TRC file, or a folder of them
     (:func:`skilllib.formats.load_recordings`, which ``read_options`` go to: ``columns``, ``units``,
-    ``up_axis``, ``marker``, ``contact_channel``, ``contact_height``, ``name_pattern``)."""
+    ``up_axis``, ``marker``, ``contact_channel``, ``contact_threshold``, ``contact_height``, ``name_pattern``)."""
     options = {k: v for k, v in read_options.items() if v is not None}
     if not options:
         if data is None:

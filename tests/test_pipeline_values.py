@@ -683,7 +683,7 @@ def test_figures_are_written_only_when_asked_and_change_nothing_else(tmp_path, r
 # --- the command line: each flag reaches run() as its option -----------------------------------------
 
 NO_READ_OPTIONS = {"columns": None, "units": None, "up_axis": None, "marker": None, "contact_channel": None,
-                   "contact_height": None, "name_pattern": None}
+                   "contact_threshold": None, "contact_height": None, "name_pattern": None}
 CLI_DEFAULTS = {"data": None, "k": pt.DEFAULT_K, "robot": "simple6", "qd_max": None, "qdd_max": None,
                 "tau_max": None, "scaling": "raw",
                 "random_state": 0, "fc": DEFAULT_FC, "amp_th": DEFAULT_AMP_TH, "padlevel": DEFAULT_PADLEVEL,
@@ -713,9 +713,10 @@ CLI_CASES = [
     (["--lowpass", "none"], {"lowpass": "none"}),
     (["--units", "mm", "--up-axis=-z", "--columns", "time=t,px=x"],
      {"read_options": {**NO_READ_OPTIONS, "units": "mm", "up_axis": "-z", "columns": {"time": "t", "px": "x"}}}),
-    (["--marker", "tip", "--contact-channel", "fz", "--contact-height", "0.01", "--name-pattern", "(?P<trial>.*)"],
+    (["--marker", "tip", "--contact-channel", "fz", "--contact-height", "0.01", "--name-pattern", "(?P<trial>.*)",
+      "--contact-threshold", "2.5"],
      {"read_options": {**NO_READ_OPTIONS, "marker": "tip", "contact_channel": "fz", "contact_height": 0.01,
-                       "name_pattern": "(?P<trial>.*)"}}),
+                       "name_pattern": "(?P<trial>.*)", "contact_threshold": 2.5}}),
 ]
 
 
