@@ -37,7 +37,7 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
-from ..data import POSITION_COLUMNS, DataFormatError
+from ..data import POSITION_COLUMNS, DataFormatError, quote
 
 UNIT_FACTORS: dict[str, float] = {"m": 1.0, "cm": 0.01, "mm": 0.001}  #: metres per unit
 
@@ -128,7 +128,7 @@ def _positions(df: pd.DataFrame, source: str, first_line: int | None) -> np.ndar
         if bad.any():
             i = int(np.flatnonzero(bad)[0])
             where = f"line {i + first_line}" if first_line is not None else f"row {i}"
-            raise DataFormatError(f"{source}, {where}, column '{c}': {text.iloc[i]!r} is not a number")
+            raise DataFormatError(f"{source}, {where}, column '{c}': {quote(text.iloc[i])} is not a number")
         out[:, j] = num.to_numpy(dtype=float, na_value=np.nan)
     return out
 

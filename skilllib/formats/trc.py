@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..data import DataFormatError
+from ..data import DataFormatError, quote
 from .mapping import unit_factor
 
 HEADER_LINES = 5  #: PathFileType, header names, header values, marker names, X1/Y1/Z1
@@ -118,7 +118,7 @@ def read_trc(path: str | Path, *, marker: str | None = None, units: str | None =
         if bad.any():
             i = int(np.flatnonzero(bad)[0])
             raise DataFormatError(f"{path}, line {data_lines[i] + 1}, column {j + 1} ({name}): "
-                                  f"{text.iloc[i]!r} is not a number")
+                                  f"{quote(text.iloc[i])} is not a number")
         out[name] = num.to_numpy(dtype=float, na_value=np.nan)
     xyz = np.column_stack([out["x"], out["y"], out["z"]])
     xyz[np.all(xyz == 0, axis=1)] = np.nan

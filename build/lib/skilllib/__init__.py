@@ -5,6 +5,9 @@ per idea: :mod:`~skilllib.smoothness` (SPARC, LDLJ), :mod:`~skilllib.cohort` (th
 experiment), :mod:`~skilllib.data` (the recordings format), :mod:`~skilllib.features` (segmentation and
 per-trial features), :mod:`~skilllib.prototypes` (silhouettes, K-means prototypes),
 :mod:`~skilllib.robots` and :mod:`~skilllib.transfer` (joint velocities on an arm),
+:mod:`~skilllib.workspace` and :mod:`~skilllib.ik` (reach and inverse kinematics),
+:mod:`~skilllib.dynamics`, :mod:`~skilllib.execution` and :mod:`~skilllib.feasibility` (accelerations,
+torques, every limit, time scaling, the executed motion),
 :mod:`~skilllib.figures` and :mod:`~skilllib.pipeline` (``python -m skilllib run``).
 
 Every name is loaded on first use (PEP 562), so that ``import skilllib`` and ``python -m skilllib

@@ -87,6 +87,9 @@ def _parser() -> argparse.ArgumentParser:
     g.add_argument("--marker", metavar="NAME", help="the C3D/TRC marker to use (default: the only one)")
     g.add_argument("--contact-channel", metavar="NAME",
                    help="C3D analog channel or event that marks contact (default: 'contact' when present)")
+    g.add_argument("--contact-threshold", type=float, metavar="V",
+                   help="the C3D analog level above which a frame is in contact (default: halfway between the "
+                        "channel's minimum and maximum)")
     g.add_argument("--contact-height", type=float, metavar="M",
                    help="without a contact signal: contact from the first sample at or below this height (m)")
     g.add_argument("--name-pattern", metavar="REGEX",
@@ -100,6 +103,12 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--qd-max", type=float, nargs="+", metavar="RAD_S",
                    help="joint velocity limits in rad/s: one for all joints or one per joint "
                         "(default: the robot's)")
+    r.add_argument("--qdd-max", type=float, nargs="+", metavar="RAD_S2",
+                   help="joint acceleration limits in rad/s^2: one for all joints or one per joint "
+                        "(default: the robot's; README)")
+    r.add_argument("--tau-max", type=float, nargs="+", metavar="NM",
+                   help="joint torque limits in N m, one for all joints or one per joint (arms with dynamics: "
+                        "ur5, puma560, panda; default: the robot's)")
     r.add_argument("--scaling", choices=("raw", "standard"), default="raw",
                    help="features as they are (the paper) or standardised before K-means")
     r.add_argument("--seed", type=_seed, default=0, help="random_state of K-means, 0 .. 2**32-1 (default 0)")
@@ -133,12 +142,17 @@ def _run(args: argparse.Namespace) -> int:
     def progress(items, desc):
         return tqdm(items, desc=desc, unit=units.get(desc, " item"), disable=not show, leave=False, file=sys.stderr)
 
-    qd_max = None if args.qd_max is None else (args.qd_max[0] if len(args.qd_max) == 1 else args.qd_max)
+    def one_or_all(values):
+        return None if values is None else (values[0] if len(values) == 1 else values)
+
+    qd_max = one_or_all(args.qd_max)
     read_options = {"columns": args.columns, "units": args.units, "up_axis": args.up_axis, "marker": args.marker,
-                    "contact_channel": args.contact_channel, "contact_height": args.contact_height,
+                    "contact_channel": args.contact_channel, "contact_threshold": args.contact_threshold,
+                    "contact_height": args.contact_height,
                     "name_pattern": args.name_pattern}
     try:
-        result = run(args.data, args.out, k=args.k, robot=args.robot, qd_max=qd_max, scaling=args.scaling,
+        result = run(args.data, args.out, k=args.k, robot=args.robot, qd_max=qd_max,
+                     qdd_max=one_or_all(args.qdd_max), tau_max=one_or_all(args.tau_max), scaling=args.scaling,
                      random_state=args.seed, fc=args.fc, amp_th=args.amp_th, padlevel=args.padlevel,
                      sensitivity=args.sensitivity, lowpass=args.lowpass, read_options=read_options,
                      progress=progress, write_figures=not args.no_figures)

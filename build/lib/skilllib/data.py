@@ -35,7 +35,6 @@ checked by :mod:`skilllib.timing`.
 """
 from __future__ import annotations
 
-import csv
 import io
 import re
 from collections.abc import Callable, Iterable
@@ -47,6 +46,7 @@ import numpy as np
 import pandas as pd
 
 from . import timing
+from .csvtable import MAX_QUOTE, DataFormatError, quote, read_table, record_lines  # noqa: F401  (re-exported)
 from .timing import MIN_RATE_HZ, MIXED_FRACTION, RATE_TOLERANCE  # noqa: F401  (re-exported)
 
 COLUMNS = ("participant", "trial", "t", "x", "y", "z", "contact")
@@ -58,11 +58,6 @@ MAX_TYPICAL_SPEED = 20.0  #: m/s; a typical (median over trials of the 95th perc
 T_DECIMALS, POS_DECIMALS = 4, 5  #: writer's rounding: 0.1 ms and 0.01 mm
 #: Cells of the numeric columns read as missing (NaN), as pandas reads them by default.
 NA_TEXT = frozenset({"", "NA", "N/A", "n/a", "NaN", "nan", "-nan", "-NaN", "NULL", "null", "None", "#N/A"})
-MAX_QUOTE = 40  #: characters of a cell quoted in a message; longer cells are cut
-
-
-class DataFormatError(ValueError):
-    """The file cannot be read as recordings; the message names the file, line and column."""
 
 
 @dataclass(frozen=True)
@@ -138,75 +133,9 @@ def sort_ids(labels: Iterable[Any]) -> list:
     return sorted(labels, key=natural_key)
 
 
-def quote(text: Any) -> str:
-    """A cell for a message: repr, cut to :data:`MAX_QUOTE` characters with its full length said."""
-    s = str(text)
-    if len(s) <= MAX_QUOTE:
-        return repr(s)
-    return f"{s[:MAX_QUOTE]!r}... ({len(s):,} characters)"
-
-
 def _where(source: str, place: str, column: str) -> str:
     """"file, line 12, column 'x'" (``place`` from the caller's ``loc``)."""
     return f"{source}, {place}, column '{column}'"
-
-
-def _read_text(path: Path) -> str:
-    """The file's text, decompressed as pandas infers from the extension; DataFormatError when missing,
-    a folder, or not UTF-8 text."""
-    from pandas.io.common import get_handle  # how read_csv opens (and decompresses) a path
-
-    if not path.exists():
-        raise DataFormatError(f"{path}: file not found")
-    if path.is_dir():
-        raise DataFormatError(f"{path}: is a directory, not a CSV file")
-    try:
-        with get_handle(path, "r", encoding="utf-8-sig", compression="infer") as h:
-            return h.handle.read()
-    except UnicodeDecodeError:
-        raise DataFormatError(f"{path}: not a text (UTF-8) CSV file (compressed files need their "
-                              f"extension: .gz, .bz2, .zip, .xz, .zst)") from None
-    except (OSError, EOFError, ValueError) as e:  # a damaged archive
-        raise DataFormatError(f"{path}: cannot be decompressed: {e}") from None
-
-
-def record_lines(text: str) -> np.ndarray:
-    """1-based physical line of each record of a CSV text after its header, blank lines included as
-    records (as ``read_csv(skip_blank_lines=False)`` keeps them): a quoted cell spanning lines counts them."""
-    if '"' not in text:  # one record per line
-        n = text.count("\n") + (0 if text.endswith("\n") else 1)
-        return np.arange(2, n + 1)
-    reader = csv.reader(io.StringIO(text))
-    starts, end = [], 0
-    for _ in reader:
-        starts.append(end + 1)
-        end = reader.line_num
-    return np.asarray(starts[1:], dtype=np.int64)
-
-
-def read_table(path: str | Path) -> tuple[pd.DataFrame, np.ndarray]:
-    """A CSV file as a table of text cells (nothing converted; blank lines kept as empty rows) and the
-    physical line of each row. DataFormatError for a missing, empty, binary or malformed file."""
-    path = Path(path)
-    text = _read_text(path)
-    if not text.strip():
-        raise DataFormatError(f"{path}: file is empty")
-    try:
-        df = pd.read_csv(io.StringIO(text), dtype=str, keep_default_na=False, skip_blank_lines=False,
-                         skipinitialspace=True)
-    except pd.errors.ParserError as e:  # e.g. "Expected 7 fields in line 12, saw 8"
-        msg = str(e).replace("Error tokenizing data. C error: ", "").strip()
-        m = re.search(r"in line (\d+)", msg)
-        if m and '"' in text:  # the parser counts records; name the physical line
-            lines = record_lines(text)
-            rec = int(m.group(1)) - 2
-            if 0 <= rec < len(lines):
-                msg = msg.replace(m.group(0), f"in line {lines[rec]}")
-        raise DataFormatError(f"{path}: not a valid CSV table: {msg}") from None
-    except pd.errors.EmptyDataError:
-        raise DataFormatError(f"{path}: file is empty") from None
-    lines = record_lines(text)[:len(df)]
-    return df, lines
 
 
 def _check_columns(df: pd.DataFrame, source: str) -> pd.DataFrame:
@@ -297,10 +226,12 @@ def _trial_problem(t: np.ndarray, pos: np.ndarray, contact: np.ndarray, rows: np
     return ""
 
 
-def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *,
-                          lines: np.ndarray | None = None) -> Recordings:
+def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, lines: np.ndarray | None = None,
+                          places: np.ndarray | None = None) -> Recordings:
     """Validate a long table into :class:`Recordings`; see :func:`read_recordings`. ``lines``: the
-    physical file line of each row (as :func:`read_table` gives), else messages name 0-based rows."""
+    physical file line of each row (as :func:`read_table` gives); ``places``: a text per row naming where
+    it came from (``"P01/3.c3d, frame 12"``, for tables read from several files); else messages name
+    0-based rows."""
     if not isinstance(df, pd.DataFrame):
         raise DataFormatError(f"{source}: expected a pandas DataFrame, got {type(df).__name__}")
     df = _check_columns(df, source)
@@ -315,6 +246,8 @@ def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *,
         return int(where[r])
 
     def loc(r: int) -> str:
+        if places is not None:
+            return str(places[kept[r]])
         return f"line {line(r)}" if lines is not None else f"row {line(r)}"
 
     cols = {c: _numeric(df[c], c, source, loc) for c in ("t", "x", "y", "z", "contact")}

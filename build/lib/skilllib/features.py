@@ -44,7 +44,7 @@ import pandas as pd
 from scipy.signal import savgol_filter
 
 from . import smoothness
-from .data import Recordings, recordings_from_frame
+from .data import Recordings, recordings_from_frame, sort_ids
 from .filtering import Lowpass, choose_lowpass
 
 ONSET_SPEED = 0.05  #: m/s, movement onset threshold (the paper)
@@ -255,7 +255,7 @@ def select(features: pd.DataFrame) -> pd.DataFrame:
 def status_counts(features: pd.DataFrame) -> pd.DataFrame:
     """Trials per participant and status (columns selected, excluded, invalid, total), with a total row."""
     t = pd.crosstab(features["participant"], features["status"])
-    t = t.reindex(columns=["selected", "excluded", "invalid"], fill_value=0)
+    t = t.reindex(index=sort_ids(t.index), columns=["selected", "excluded", "invalid"], fill_value=0)
     t["total"] = t.sum(axis=1)
     t.loc["all"] = t.sum(axis=0)
     return t
@@ -274,7 +274,7 @@ def participant_summary(features: pd.DataFrame) -> pd.DataFrame:
         q = g[c].quantile([0.25, 0.5, 0.75]).unstack()
         out[f"{name} median"] = q[0.5]
         out[f"{name} IQR"] = q[0.75] - q[0.25]
-    return out
+    return out.reindex(sort_ids(out.index))
 
 
 def rest_speed(recordings: Recordings | pd.DataFrame, features: pd.DataFrame, margin: float = 0.2) -> np.ndarray:

@@ -10,17 +10,22 @@ paper's 0.05 m/s onset threshold at rest. Biomechanics therefore low-pass filter
   Running it twice squares its gain, so its -3 dB point moves down. **The cut-off this module names is the
   -3 dB frequency of the whole forward-backward filter**; the single pass is designed at
   ``cutoff / C`` with Winter's correction ``C = (2**(1/passes) - 1)**(1/(2 order))`` (0.802 for order 2,
-  two passes), :func:`design_frequency`.
+  two passes), made exact for the digital filter by the bilinear transform's warping,
+  :func:`design_frequency`.
 * **Winter's residual analysis** chooses the cut-off from the data (:func:`residual_analysis`): the RMS
   residual between raw and filtered positions, R(f), falls as the cut-off f rises; above the movement's
   band it is noise only and falls linearly to 0 at the Nyquist frequency. The straight line fitted to
   that part (cut-offs from :data:`NOISE_FIT_RANGE` of the Nyquist frequency) meets f = 0 at the noise's
   RMS amplitude a; the cut-off is the lowest f with R(f) <= a, where the signal distortion left equals the
   noise let through.
-* **When to filter.** ``"auto"`` (the default) filters only when it is needed: when the position noise a
-  of Winter's analysis, differentiated over the pipeline's window, gives a 3-D speed noise (RMS) above
+* **When to filter.** ``"auto"`` (the default) filters only when it is needed: when the position noise,
+  differentiated over the pipeline's window, gives a 3-D speed noise (RMS) above
   :data:`SPEED_NOISE_LIMIT` (5 mm/s, a tenth of the onset threshold; the SPARC chapter shows that speed
-  noise of 1-3 % of the peak speed leaves SPARC unchanged). The book's 60 Hz cohort (0.03 mm, about
+  noise of 1-3 % of the peak speed leaves SPARC unchanged). The noise is measured where the protocol
+  has the hand at rest, the first :data:`REST_S` of every trial (:func:`rest_noise`: the SD of second
+  differences over sqrt(6), which white noise has and a still or slowly swaying hand has not; the median
+  over trials). Winter's intercept is not used for this decision: a recording without noise but with an
+  abrupt start (a kink) has broadband content that his line reads as noise. The book's 60 Hz cohort (0.03 mm, about
   2 mm/s) is therefore not filtered, and its results are those of the paper's procedure. A number
   filters at that cut-off; ``"none"`` never filters.
 
@@ -46,30 +51,38 @@ SPEED_NOISE_LIMIT = 0.005  #: m/s, 3-D speed noise (RMS) above which "auto" filt
 NOISE_FIT_RANGE = (0.5, 0.9)  #: fractions of the Nyquist frequency where the residual is fitted as noise
 MIN_CUTOFF_HZ = 2.0  #: the lowest cut-off the residual analysis proposes (Hz)
 RESIDUAL_TRIALS = 100  #: trials the residual analysis looks at (evenly spaced over the file, deterministic)
-END_FIT_S = 0.05  #: s, samples at each end a straight line is fitted to, to extend the signal (:func:`_extend`)
+START_FIT_S = 0.2  #: s, samples at the start a straight line is fitted to, to extend the signal (:func:`_extend`)
+END_FIT_S = 0.05  #: s, samples at the end a straight line is fitted to
 N_CUTOFFS = 60  #: cut-offs the residual analysis scans
+REST_S = 0.1  #: s, the start of each trial where the hand rests and the noise is measured
+REST_MIN_SAMPLES = 10  #: samples of that start at least (at low rates)
 LOWPASS_CHOICES = ("auto", "none")
 
 
-def design_frequency(cutoff_hz: float, order: int = ORDER, passes: int = PASSES) -> float:
+def design_frequency(cutoff_hz: float, order: int = ORDER, passes: int = PASSES, fs: float | None = None) -> float:
     """The single-pass Butterworth design frequency (Hz) whose ``passes``-fold application has its -3 dB
-    point at ``cutoff_hz``: ``cutoff / C``, ``C = (2**(1/passes) - 1)**(1/(2 order))`` (Winter 2009)."""
-    return cutoff_hz / (2 ** (1 / passes) - 1) ** (1 / (2 * order))
+    point at ``cutoff_hz``: ``cutoff / C``, ``C = (2**(1/passes) - 1)**(1/(2 order))`` (Winter 2009), for an
+    analog filter. With ``fs`` (Hz) it is exact for the digital filter scipy designs (bilinear transform,
+    prewarped at the design frequency): ``tan(pi fd / fs) = tan(pi cutoff / fs) / C``."""
+    c = (2 ** (1 / passes) - 1) ** (1 / (2 * order))
+    if fs is None:
+        return cutoff_hz / c
+    return float(fs / np.pi * np.arctan(np.tan(np.pi * cutoff_hz / fs) / c))
 
 
-def _extend(x: np.ndarray, n_pad: int, n_fit: int) -> np.ndarray:
+def _extend(x: np.ndarray, n_pad: int, n_fit_start: int, n_fit_end: int) -> np.ndarray:
     """``x`` (N, m) with ``n_pad`` samples added at each end by odd reflection about the value, at that end,
-    of a straight line fitted to the ``n_fit`` samples there. Reflecting about the raw end sample (scipy's
-    ``padtype="odd"``) would pin the filtered signal to that sample's noise: a step at the first sample of
-    a noisy recording that the derivative turns into a false movement onset. The fitted line keeps the
-    end's slope (the approach still moves at contact) without its noise."""
+    of a straight line fitted to the samples there (``n_fit_start`` at the start, ``n_fit_end`` at the
+    end). Reflecting about the raw end sample (scipy's ``padtype="odd"``) would pin the filtered signal to
+    that sample's noise: a step at the first sample of a noisy recording that the derivative turns into a
+    false movement onset. The fitted line keeps the end's slope (the approach still moves at contact, and a
+    recording that starts in motion still does) with much less of its noise."""
     n = len(x)
-    k = max(2, min(n_fit, n))
-    tt = np.arange(k, dtype=float)
-    a0 = np.polyfit(tt, x[:k], 1)  # (2, m): slope, intercept
-    a1 = np.polyfit(tt, x[n - k:], 1)
+    k0, k1 = max(2, min(n_fit_start, n)), max(2, min(n_fit_end, n))
+    a0 = np.polyfit(np.arange(k0, dtype=float), x[:k0], 1)  # (2, m): slope, intercept
+    a1 = np.polyfit(np.arange(k1, dtype=float), x[n - k1:], 1)
     first = a0[1]
-    last = a1[0] * (k - 1) + a1[1]
+    last = a1[0] * (k1 - 1) + a1[1]
     head = 2 * first - x[n_pad:0:-1]
     tail = 2 * last - x[n - 2:n - 2 - n_pad:-1]
     return np.concatenate([head, x, tail])
@@ -80,10 +93,11 @@ def butterworth_lowpass(pos: np.ndarray, fs: float, cutoff_hz: float, order: int
     forward-backward -3 dB frequency is ``cutoff_hz`` (Hz; the design frequency below ``fs / 2``).
 
     The ends are extended by :func:`_extend` over about two periods of the design frequency (at most
-    N - 1 samples), with lines fitted to :data:`END_FIT_S` of samples, so that the filter's start-up
-    transient falls outside the recording."""
-    fd = design_frequency(cutoff_hz, order)
-    if not 0 < fd < fs / 2:
+    N - 1 samples), with lines fitted to :data:`START_FIT_S` of samples at the start (where a trial's hand
+    rests: a long line, little noise) and :data:`END_FIT_S` at the end (where the approach still moves and
+    decelerates: a short one), so that the filter's start-up transient falls outside the recording."""
+    fd = design_frequency(cutoff_hz, order, fs=fs)
+    if not 0 < cutoff_hz < fs / 2:
         raise ValueError(f"a low-pass cut-off of {cutoff_hz:g} Hz (designed at {fd:.3g} Hz) needs a sampling rate "
                          f"above {2 * fd:.3g} Hz; these recordings are sampled at {fs:g} Hz")
     sos = butter(order, fd, btype="low", fs=fs, output="sos")
@@ -91,8 +105,8 @@ def butterworth_lowpass(pos: np.ndarray, fs: float, cutoff_hz: float, order: int
     shape = pos.shape
     x = pos.reshape(len(pos), -1)
     n_pad = min(len(x) - 1, int(np.ceil(2 * fs / fd)))
-    n_fit = max(3, int(round(END_FIT_S * fs)))
-    y = sosfiltfilt(sos, _extend(x, n_pad, n_fit), axis=0, padtype=None)
+    y = sosfiltfilt(sos, _extend(x, n_pad, max(3, int(round(START_FIT_S * fs))), max(3, int(round(END_FIT_S * fs)))),
+                    axis=0, padtype=None)
     return y[n_pad:n_pad + len(x)].reshape(shape)
 
 
@@ -106,7 +120,7 @@ def speed_noise(position_noise_m: float, fs: float, window: int, cutoff_hz: floa
     _, d = freqz(savgol_coeffs(window, 2, deriv=1, delta=1.0 / fs, use="dot"), worN=f, fs=fs)
     gain = np.abs(d) ** 2
     if cutoff_hz is not None:
-        _, h = sosfreqz(butter(order, design_frequency(cutoff_hz, order), fs=fs, output="sos"), worN=f, fs=fs)
+        _, h = sosfreqz(butter(order, design_frequency(cutoff_hz, order, fs=fs), fs=fs, output="sos"), worN=f, fs=fs)
         gain = gain * np.abs(h) ** (2 * PASSES)
     return float(np.sqrt(3) * position_noise_m * np.sqrt(np.trapezoid(gain, f) / (fs / 2)))
 
@@ -114,6 +128,17 @@ def speed_noise(position_noise_m: float, fs: float, window: int, cutoff_hz: floa
 def max_cutoff(fs: float, order: int = ORDER) -> float:
     """The highest cut-off (Hz) the zero-lag filter can have at ``fs`` (design frequency just below Nyquist)."""
     return fs / 2 * (2 ** (1 / PASSES) - 1) ** (1 / (2 * order)) * 0.99
+
+
+def rest_noise(approaches: Sequence[np.ndarray], fs: float) -> float:
+    """White position noise (m, RMS per axis) at rest: over the first :data:`REST_S` s of every trial (at
+    least :data:`REST_MIN_SAMPLES`), the root mean square of second differences over samples and axes
+    divided by sqrt(6) (white noise of SD s has second differences of mean 0 and SD s sqrt(6)); the median
+    over trials (robust to trials that do not start at rest). 0 when no trial is long enough."""
+    n = max(REST_MIN_SAMPLES, int(round(REST_S * fs)))
+    est = [float(np.sqrt(np.mean(np.diff(np.asarray(a[:n], dtype=float), 2, axis=0) ** 2) / 6))
+           for a in approaches if len(a) >= n]
+    return float(np.median(est)) if est else 0.0
 
 
 @dataclass(frozen=True)
@@ -162,8 +187,9 @@ class Lowpass:
 
     ``cutoff_hz``: the -3 dB frequency of the forward-backward filter (Hz), None when no filter is applied;
     ``chosen_by``: ``"given"`` (a number), ``"winter residual analysis"`` (``auto``, noise above the
-    limit), ``"auto: not needed"`` (``auto``, noise below it) or ``"none"``; ``noise_m``: Winter's noise
-    estimate (m) and ``speed_noise``: the 3-D speed noise it gives without a filter (m/s), when estimated.
+    limit), ``"auto: not needed"`` (``auto``, noise below it) or ``"none"``; ``noise_m``: the position
+    noise at rest (m, :func:`rest_noise`) and ``speed_noise``: the 3-D speed noise it gives without a filter
+    (m/s), when estimated.
     """
 
     cutoff_hz: float | None
@@ -171,6 +197,7 @@ class Lowpass:
     order: int = ORDER
     noise_m: float | None = None
     speed_noise: float | None = None
+    fs: float | None = None  #: Hz, the recordings' sampling rate (for the exact design frequency)
 
     def apply(self, pos: np.ndarray, fs: float) -> np.ndarray:
         """``pos`` filtered (or as it is, when no filter applies)."""
@@ -183,7 +210,8 @@ class Lowpass:
         on = self.cutoff_hz is not None
         return {"kind": "butterworth low-pass, forward-backward (zero lag)" if on else None,
                 "order": self.order if on else None, "passes": PASSES if on else None,
-                "cutoff_hz": self.cutoff_hz, "design_hz": design_frequency(self.cutoff_hz, self.order) if on else None,
+                "cutoff_hz": self.cutoff_hz,
+                "design_hz": design_frequency(self.cutoff_hz, self.order, fs=self.fs) if on else None,
                 "chosen_by": self.chosen_by, "position_noise_m": self.noise_m, "speed_noise_m_s": self.speed_noise,
                 "speed_noise_limit_m_s": SPEED_NOISE_LIMIT if self.chosen_by.startswith(("auto", "winter")) else None}
 
@@ -224,16 +252,17 @@ def choose_lowpass(spec: str | float | Lowpass | None, approaches: Sequence[np.n
         if np.isfinite(fs) and float(spec) > max_cutoff(fs):
             raise ValueError(f"a low-pass cut-off of {spec:g} Hz is too high for recordings sampled at {fs:g} Hz "
                              f"(at most {max_cutoff(fs):.3g} Hz for the zero-lag filter)")
-        return Lowpass(float(spec), "given")
+        return Lowpass(float(spec), "given", fs=fs if np.isfinite(fs) else None)
     pick = [a for a in approaches if len(a) >= 4]
     if not pick or not np.isfinite(fs):
         return Lowpass(None, "auto: not needed (no trial to estimate the noise from)")
+    noise = rest_noise(pick, fs)
+    sn = speed_noise(noise, fs, window)
+    if sn <= SPEED_NOISE_LIMIT:
+        return Lowpass(None, "auto: not needed", noise_m=noise, speed_noise=sn)
     step = max(1, len(pick) // RESIDUAL_TRIALS)
     ra = residual_analysis(pick[::step][:RESIDUAL_TRIALS], fs)
-    sn = speed_noise(ra.noise_m, fs, window)
-    if sn <= SPEED_NOISE_LIMIT:
-        return Lowpass(None, "auto: not needed", noise_m=ra.noise_m, speed_noise=sn)
     if ra.cutoff_hz is None:  # the residual never falls to the noise line: filter at the highest cut-off scanned
         return Lowpass(float(ra.cutoffs[-1]), "winter residual analysis (no crossing: highest cut-off)",
-                       noise_m=ra.noise_m, speed_noise=sn)
-    return Lowpass(ra.cutoff_hz, "winter residual analysis", noise_m=ra.noise_m, speed_noise=sn)
+                       noise_m=noise, speed_noise=sn, fs=fs)
+    return Lowpass(ra.cutoff_hz, "winter residual analysis", noise_m=noise, speed_noise=sn, fs=fs)

@@ -25,6 +25,8 @@ import numpy as np
 import pandas as pd
 from sklearn.metrics import normalized_mutual_info_score
 
+from .data import sort_ids
+
 #: Permutations of the baseline in :func:`participant_dependence`.
 N_PERMUTATIONS = 999
 
@@ -43,7 +45,7 @@ def cluster_participant_table(labels: Any, participants: Any) -> pd.DataFrame:
     lab, par = _pair(labels, participants)
     t = pd.crosstab(pd.Series(lab, name="cluster"), pd.Series(par, name="participant"),
                     margins=True, margins_name="all")
-    return t
+    return t.reindex(columns=[*sort_ids(c for c in t.columns if c != "all"), "all"])
 
 
 @dataclass(frozen=True)

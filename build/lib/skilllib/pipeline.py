@@ -3,8 +3,9 @@
 Steps (each a skilllib function the chapters also call): read and validate the recordings
 (:mod:`skilllib.data`); segment every trial and compute its features, status and reason
 (:mod:`skilllib.features`); silhouette sweep and K-means prototypes on the selected trials' (PV, SPARC)
-tuples (:mod:`skilllib.prototypes`); joint velocities of every prototype on a robot arm, feasibility
-and time scaling (:mod:`skilllib.transfer`). :func:`run` returns the results dictionary that is
+tuples (:mod:`skilllib.prototypes`); joint velocities of every prototype on a robot arm
+(:mod:`skilllib.transfer`), its accelerations, torques, limits, time scaling and executed motion
+(:mod:`skilllib.feasibility`). :func:`run` returns the results dictionary that is
 written to ``results.json`` (schema in README) and writes the figures beside it.
 """
 from __future__ import annotations
@@ -23,13 +24,14 @@ from . import __version__
 from . import prototypes as pt
 from .data import Recordings, read_recordings, recordings_from_frame
 from .datasets import cohort_path
+from .feasibility import Assessment, assess, resolve_limits, transfer_block
 from .features import CONTACT_WINDOW, ONSET_SPEED, run_lowpass, segment, select, trial_features
 from .filtering import Lowpass, parse_lowpass
 from .output import output_folder, write_json_atomic
 from .robots import RobotSetup, get_robot, qd_limits_vector
 from .sensitivity import SparcSensitivity, sparc_sensitivity
 from .smoothness import DEFAULT_AMP_TH, DEFAULT_FC, DEFAULT_PADLEVEL
-from .transfer import TransferResult, transfer, transfer_summary
+from .transfer import TransferResult, transfer
 
 #: The book's synthetic cohort (default input), shipped with skilllib (:mod:`skilllib.datasets`).
 DEFAULT_DATA = cohort_path()
@@ -65,6 +67,7 @@ class PipelineRun:
     profiles: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
     messages: list[str] = field(default_factory=list)
     sensitivity: SparcSensitivity | None = None
+    assessments: list[Assessment] = field(default_factory=list)
 
 
 def _plain(v: Any) -> Any:
@@ -151,6 +154,16 @@ def check_options(k: int, robot: str, qd_max: Sequence[float] | float | None,
     return setup, limits
 
 
+def check_dynamic_options(robot: str, setup: RobotSetup, qdd_max: Sequence[float] | float | None,
+                          tau_max: Sequence[float] | float | None):
+    """The acceleration and torque limits for the options (:func:`skilllib.feasibility.resolve_limits`);
+    :class:`OptionError` for a bad one."""
+    try:
+        return resolve_limits(robot, setup.robot, qdd_max, tau_max)
+    except ValueError as e:
+        raise OptionError(f"{e} ({setup.robot.name}, {setup.robot.n} joints)") from None
+
+
 def _check_nyquist(params: dict[str, float], fs: float) -> None:
     """fc above the Nyquist frequency would take the band into the spectrum's mirror image."""
     if np.isfinite(fs) and params["fc"] > fs / 2:
@@ -163,7 +176,7 @@ def load_input(data: str | Path | pd.DataFrame | Recordings | None = None,
     """The recordings of ``data``: the shipped cohort (None), :class:`Recordings` as they are, a DataFrame
     (validated), or a path: a CSV (compressed or not), a C3D or TRC file, or a folder of them
     (:func:`skilllib.formats.load_recordings`, which ``read_options`` go to: ``columns``, ``units``,
-    ``up_axis``, ``marker``, ``contact_channel``, ``contact_height``, ``name_pattern``)."""
+    ``up_axis``, ``marker``, ``contact_channel``, ``contact_threshold``, ``contact_height``, ``name_pattern``)."""
     options = {k: v for k, v in read_options.items() if v is not None}
     if not options:
         if data is None:
@@ -182,6 +195,7 @@ def load_input(data: str | Path | pd.DataFrame | Recordings | None = None,
 
 def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | Path | None = None, *,
         k: int = pt.DEFAULT_K, robot: str = "simple6", qd_max: Sequence[float] | float | None = None,
+        qdd_max: Sequence[float] | float | None = None, tau_max: Sequence[float] | float | None = None,
         scaling: str = "raw", random_state: int = 0, fc: float = DEFAULT_FC, amp_th: float = DEFAULT_AMP_TH,
         padlevel: int = DEFAULT_PADLEVEL, sensitivity: Sequence[Mapping[str, float]] | None = None,
         lowpass: str | float | Lowpass | None = "auto", read_options: Mapping[str, Any] | None = None,
@@ -192,8 +206,9 @@ def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | P
     recordings format, or :class:`~skilllib.data.Recordings`; ``read_options``: how to read it
     (:func:`load_input`); ``k``: clusters (the paper: 6), reduced with a message when the selected trials
     allow fewer; ``robot``: a name of :func:`skilllib.robots.get_robot`; ``qd_max``: joint velocity limits
-    in rad/s (one for all joints or one per joint; default: the robot's); ``scaling``: "raw" (the paper) or
-    "standard"; ``random_state``: K-means' seed (0 .. 2**32 - 1); ``fc`` (Hz, at most the Nyquist frequency
+    in rad/s (one for all joints or one per joint; default: the robot's); ``qdd_max`` (rad/s^2) and
+    ``tau_max`` (N m): joint acceleration and torque limits, likewise (default: the robot's,
+    :func:`skilllib.robots.dynamic_limits`); ``scaling``: "raw" (the paper) or "standard"; ``random_state``: K-means' seed (0 .. 2**32 - 1); ``fc`` (Hz, at most the Nyquist frequency
     of the recordings), ``amp_th`` and ``padlevel``: the SPARC parameters (:func:`skilllib.smoothness.sparc`;
     default the book's, fc = 20 Hz); ``sensitivity``: other SPARC settings (dicts of some of fc, amp_th,
     padlevel; the rest as this run's) to compare with this run's
@@ -212,6 +227,7 @@ def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | P
     it was.
     """
     setup, limits = check_options(k, robot, qd_max, scaling, random_state)
+    dyn_limits = check_dynamic_options(robot, setup, qdd_max, tau_max)
     params = check_sparc_params(fc, amp_th, padlevel)
     variants = [check_sparc_params(**{**params, **dict(v)}) for v in _settings(sensitivity)]
     if not isinstance(lowpass, Lowpass):
@@ -230,7 +246,7 @@ def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | P
         filt = run_lowpass(recordings, lowpass)
     except ValueError as e:  # a cut-off too high for the sampling rate
         raise OptionError(str(e)) from None
-    result = compute(recordings, data, setup=setup, limits=limits, k=k, scaling=scaling,
+    result = compute(recordings, data, setup=setup, limits=limits, dyn_limits=dyn_limits, k=k, scaling=scaling,
                      random_state=random_state, params=params, variants=variants, lowpass=filt, progress=progress)
     if out is not None:
         with output_folder(out) as folder:
@@ -241,7 +257,8 @@ def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | P
     return result
 
 
-def compute(recordings: Recordings, data: Any, *, setup: RobotSetup, limits: np.ndarray, k: int, scaling: str,
+def compute(recordings: Recordings, data: Any, *, setup: RobotSetup, limits: np.ndarray, dyn_limits: Any,
+            k: int, scaling: str,
             random_state: int, params: dict[str, float], variants: list[dict[str, float]], lowpass: Lowpass,
             progress: Progress = _no_progress) -> PipelineRun:
     """The pipeline's computation on validated ``recordings`` with checked options (see :func:`run`)."""
@@ -314,7 +331,8 @@ def compute(recordings: Recordings, data: Any, *, setup: RobotSetup, limits: np.
             result.profiles.append((seg.t - seg.t[0], seg.speed))
             result.transfers.append(transfer(setup.robot, seg.t - seg.t[0], seg.pos, seg.vel, q0=setup.q0,
                                              qd_limits=limits, cluster=c))
-        results["transfer"] = transfer_summary(result.transfers)
+        result.assessments = assess(setup.robot, result.transfers, dyn_limits, sparc_params=params)
+        results["transfer"] = transfer_block(result.assessments)
     if variants and sweep is not None:
         result.sensitivity = sparc_sensitivity(recordings, [params, *variants], k=results["k"], scaling=scaling,
                                                random_state=random_state, reference=(features, sweep),
@@ -377,6 +395,8 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
         keep(fg.plot_prototype_profiles(run_.profiles, run_.prototypes.prototypes), "prototype_speed_profiles")
         keep(fg.plot_joint_velocities(run_.transfers), "joint_velocities")
         keep(fg.plot_frame_mapping(robot, run_.transfers[-1]), "frame_mapping")  # the fastest prototype
+        for fig, name in fg.dynamics_figures(run_.assessments):
+            keep(fig, name)
     if run_.sensitivity is not None:
         keep(fg.plot_sparc_sensitivity(run_.sensitivity), "sparc_sensitivity")
     return written

@@ -32,6 +32,26 @@ Joint velocity limits (rad/s), the numbers the feasibility check compares with:
   pi rad/s (an assumption, not a Unimation datasheet value).
 * Panda: the Franka Emika datasheet limits, (2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61) rad/s,
   the ``qdlim`` of roboticstoolbox's URDF model ``rtb.models.Panda()``.
+
+Joint acceleration limits (rad/s^2) and joint torque limits (N m), :func:`dynamic_limits`:
+
+* Simple6: no dynamic parameters (every link mass is 0), so no torques; the book gives it the UR5's
+  acceleration value below, :data:`GENERIC_QDD_LIMIT` = 5 rad/s^2 on every joint, as it gives it the UR5's
+  joint speed: a design assumption.
+* UR5: Universal Robots publish no joint acceleration limits (the arm limits torques only); their own
+  MoveIt configuration (Universal_Robots_ROS2_Driver, ``ur_moveit_config/config/joint_limits.yaml``) uses
+  5 rad/s^2 on every joint, "chosen conservatively". Torques: (150, 150, 150, 28, 28, 28) N m, UR's
+  support article "Max. joint torques" for the UR5 (CB3), as in ``Universal_Robots_ROS2_Description``
+  ``config/ur5/joint_limits.yaml``. roboticstoolbox's UR5 model carries the link masses and centres of
+  mass UR publish but no link inertias, so its torques are those of point masses.
+* Puma 560: torques (97.6, 186.4, 89.4, 24.2, 20.1, 21.3) N m, the maximum joint torques of Armstrong,
+  Khatib & Burdick (1986, "The explicit dynamic model and inertial parameters of the PUMA 560 arm", ICRA,
+  Table 7). No separate acceleration limit: with a dynamic model (roboticstoolbox's, Corke &
+  Armstrong-Helouvry 1994, with motor inertias, gear ratios and friction) the torque limits bound the
+  accelerations.
+* Panda: the Franka Emika datasheet ("Robot and interface specifications" of the Franka Control Interface),
+  accelerations (15, 7.5, 10, 12.5, 15, 20, 20) rad/s^2 and torques (87, 87, 87, 87, 12, 12, 12) N m;
+  roboticstoolbox's DH model carries masses, centres of mass and inertias of every link.
 """
 from __future__ import annotations
 
@@ -50,6 +70,21 @@ GENERIC_QD_LIMIT: float = float(np.pi)
 
 #: Franka Emika Panda joint velocity limits, rad/s (datasheet; ``rtb.models.Panda().qdlim[:7]``).
 PANDA_QD_LIMITS: tuple[float, ...] = (2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61)
+
+#: The book's generic joint acceleration limit, rad/s^2: the value Universal Robots' MoveIt configuration
+#: uses for every UR5 joint (UR publish no acceleration limit).
+GENERIC_QDD_LIMIT: float = 5.0
+
+#: Franka Emika Panda joint acceleration limits, rad/s^2 (datasheet).
+PANDA_QDD_LIMITS: tuple[float, ...] = (15.0, 7.5, 10.0, 12.5, 15.0, 20.0, 20.0)
+
+#: Franka Emika Panda joint jerk limits, rad/s^3 (datasheet; reported beside the jerks, not enforced).
+PANDA_QDDD_LIMITS: tuple[float, ...] = (7500.0, 3750.0, 5000.0, 6250.0, 7500.0, 10000.0, 10000.0)
+
+#: Joint torque limits, N m: Panda (datasheet), UR5 (UR "Max. joint torques"), Puma 560 (Armstrong et al. 1986).
+PANDA_TAU_LIMITS: tuple[float, ...] = (87.0, 87.0, 87.0, 87.0, 12.0, 12.0, 12.0)
+UR5_TAU_LIMITS: tuple[float, ...] = (150.0, 150.0, 150.0, 28.0, 28.0, 28.0)
+PUMA560_TAU_LIMITS: tuple[float, ...] = (97.6, 186.4, 89.4, 24.2, 20.1, 21.3)
 
 #: Start poses (deg) of the other arms: reachable, inside the joint limits, well conditioned
 #: (cond J about 8 to 9) along a 0.35 m vertical descent with the orientation held fixed.
@@ -103,14 +138,7 @@ def qd_limits_vector(qd_limits: float | np.ndarray | list[float] | tuple[float, 
 
     Raises ``ValueError`` when the length is not 1 or ``n`` or a limit is not positive and finite.
     """
-    lim = np.asarray(qd_limits, dtype=float)
-    if lim.ndim == 0:
-        lim = np.full(n, float(lim))
-    if lim.shape != (n,):
-        raise ValueError(f"qd_limits must be a scalar or have {n} entries (one per joint), got shape {lim.shape}")
-    if not np.all(np.isfinite(lim)) or np.any(lim <= 0):
-        raise ValueError(f"qd_limits must be positive and finite (rad/s), got {lim.tolist()}")
-    return lim
+    return limits_vector(qd_limits, n, "qd_limits", "rad/s")
 
 
 def get_robot(name: str) -> RobotSetup:
@@ -144,6 +172,47 @@ def get_robot(name: str) -> RobotSetup:
     else:
         raise ValueError(f"unknown robot {name!r}; valid names: {', '.join(ROBOT_NAMES)}")
     return RobotSetup(robot, np.asarray(q0, dtype=float), lim)
+
+
+class DynamicLimits(NamedTuple):
+    """Joint acceleration limits ``qdd_limits`` (rad/s^2) and torque limits ``tau_limits`` (N m), each an
+    (n,) array or None where the arm has none (see the module docstring for the values and sources)."""
+
+    qdd_limits: np.ndarray | None
+    tau_limits: np.ndarray | None
+
+
+def has_dynamics(robot: rtb.Robot) -> bool:
+    """True when the model carries dynamic parameters (some link has a mass), so that inverse dynamics
+    (``rne``) gives torques; Simple6 has none."""
+    return any(float(getattr(link, "m", 0.0) or 0.0) > 0 for link in robot.links)
+
+
+def dynamic_limits(name: str) -> DynamicLimits:
+    """The book's acceleration and torque limits of an arm by name (as :func:`get_robot`)."""
+    key = str(name).strip().lower()
+    table = {"simple6": (GENERIC_QDD_LIMIT, None), "ur5": (GENERIC_QDD_LIMIT, UR5_TAU_LIMITS),
+             "puma560": (None, PUMA560_TAU_LIMITS), "panda": (PANDA_QDD_LIMITS, PANDA_TAU_LIMITS)}
+    if key not in table:
+        raise ValueError(f"unknown robot {name!r}; valid names: {', '.join(ROBOT_NAMES)}")
+    n = 7 if key == "panda" else 6
+    qdd, tau = table[key]
+    return DynamicLimits(None if qdd is None else limits_vector(qdd, n, "qdd_limits", "rad/s^2"),
+                         None if tau is None else limits_vector(tau, n, "tau_limits", "N m"))
+
+
+def limits_vector(limits: float | np.ndarray | list[float] | tuple[float, ...], n: int, what: str,
+                  unit: str) -> np.ndarray:
+    """Per-joint limits as an (n,) array (a scalar applies to every joint); ValueError naming ``what`` and
+    ``unit`` when the length is not 1 or ``n`` or a limit is not positive and finite."""
+    lim = np.asarray(limits, dtype=float)
+    if lim.ndim == 0:
+        lim = np.full(n, float(lim))
+    if lim.shape != (n,):
+        raise ValueError(f"{what} must be a scalar or have {n} entries (one per joint), got shape {lim.shape}")
+    if not np.all(np.isfinite(lim)) or np.any(lim <= 0):
+        raise ValueError(f"{what} must be positive and finite ({unit}), got {lim.tolist()}")
+    return lim
 
 
 def joint_origins(robot: rtb.DHRobot, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

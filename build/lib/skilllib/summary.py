@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .data import MAX_RANGE_M
+from .feasibility import limits_text
 
 if TYPE_CHECKING:
     from .pipeline import PipelineRun
@@ -34,18 +35,18 @@ def summary_lines(run_: PipelineRun) -> list[str]:
     if run_.prototypes is not None:
         fit = run_.prototypes
         lines.append(f"k = {fit.k} clusters ({fit.scaling} features), average silhouette {fit.silhouette:.3f}")
-        for c, tr in zip(range(fit.k), run_.transfers):
+        for c, (tr, a) in enumerate(zip(run_.transfers, run_.assessments)):
             p = {col: fit.prototypes.at[c, col] for col in fit.prototypes.columns}
-            verdict = "feasible" if tr.feasible else (
-                f"needs time scaling x{tr.time_scale:.2f}" if not tr.flags else f"{len(tr.flags)} flag(s)")
+            dyn = a.dynamics
+            verdict = "feasible" if dyn.feasible else (
+                f"needs time scaling x{dyn.time_scale:.2f} ({dyn.binding_limit} binds)" if not tr.flags
+                else f"{len(tr.flags)} flag(s)")
             peak = f"{np.nanmax(tr.peak_abs_qd):.2f}" if np.isfinite(tr.peak_abs_qd).any() else "n/a"
             lines.append(f"  cluster {c}: size {fit.sizes[c]}, prototype participant {p['participant']} trial "
                          f"{p['trial']} (PV {p['pv']:.2f} m/s, SPARC {p['sparc']:.2f}); "
                          f"peak |qd| {peak} rad/s, {verdict}")
-        n_ok = sum(tr.feasible for tr in run_.transfers)
-        lim = run_.transfers[0].qd_limits
-        lim_txt = f"{lim[0]:.3g} rad/s" if np.all(lim == lim[0]) else f"{', '.join(f'{v:.3g}' for v in lim)} rad/s"
-        lines.append(f"feasibility on {run_.transfers[0].robot} (joint velocity limits {lim_txt}): "
+        n_ok = sum(a.dynamics.feasible for a in run_.assessments)
+        lines.append(f"feasibility on {run_.transfers[0].robot} ({limits_text(run_.assessments[0].dynamics)}): "
                      f"{n_ok} of {fit.k} prototypes feasible as recorded")
     if run_.sensitivity is not None:
         sens = run_.sensitivity

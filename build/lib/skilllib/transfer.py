@@ -14,18 +14,19 @@ roboticstoolbox arm:
   robot z = experiment y (up). It is a cyclic permutation, a proper rotation (det +1).
 * **Placement.** The movement's start is put at the tool point of the start pose ``q0``;
   the tool orientation is held at that of ``q0`` (v has no angular part: w = 0).
-* **IK.** Levenberg-Marquardt (``ETS.ikine_LM``, the compiled solver) for the full pose, seeded
-  with the previous sample's solution. Its ``tol`` bounds E = 0.5 e'e, not the position error, so
-  a tiny ``tol`` is asked for and the position residual |p(q) - p*| is checked here against
-  :data:`IK_RESIDUAL_TOL_M` (and the orientation residual against the same number in rad).
+* **IK.** A target outside the arm's reach shell (:mod:`skilllib.workspace`: the distances from
+  the shoulder the tool point can take) is *unreachable* and not searched. Inside it,
+  :func:`skilllib.ik.solve_ik` runs Levenberg-Marquardt seeded with the previous sample's solution,
+  then restarts and other roboticstoolbox solvers, until the position residual |p(q) - p*| is within
+  :data:`IK_RESIDUAL_TOL_M` (and the orientation residual within the same number in rad) inside the
+  joint limits; if none succeeds it is an *IK failure*, reported with cond J at the last solved sample.
 * **Jacobian and singularity.** ``ETS.jacob0`` (world frame). For a square J: det J and the
   2-norm condition number; for a redundant arm (n > 6) ``det_j`` is Yoshikawa's manipulability
   sqrt(det(J J')) (equal to |det J| when J is square; Corke 2017, sec. 8.2.2) and qd is the
   minimum-norm solution J^+ v (pseudo-inverse; Corke 2017, sec. 8.4.2).
 
-Problems are flagged per sample ({sample, reason}) and never hidden: an IK failure (unreachable
-target or none inside the joint limits) leaves NaN in q, qd, det_j and cond_j of that sample,
-with a flag; a solution on another IK branch, a Jacobian with ``cond_j`` above
+Problems are flagged per sample ({sample, reason}) and never hidden: an unreachable target or an
+IK failure leaves NaN in q, qd, det_j and cond_j of that sample, with a flag; a solution on another IK branch, a Jacobian with ``cond_j`` above
 :data:`COND_THRESHOLD` or a numerically singular one are flagged and still computed. The other
 samples are computed as usual.
 
@@ -41,8 +42,10 @@ from typing import Any
 import numpy as np
 import roboticstoolbox as rtb
 
+from .ik import IK_RESTARTS, solve_ik
 from .robots import get_robot, qd_limits_vector
 from .smoothness import DEFAULT_FC, sparc
+from .workspace import reach_shell
 
 #: Experiment -> robot base rotation, ``p_base = EXP_TO_BASE @ p_exp`` (det +1):
 #: base x = exp z (anteroposterior, forward), base y = exp x (mediolateral), base z = exp y (up).
@@ -63,9 +66,6 @@ SINGULAR_COND: float = 1e12
 #: Largest joint step between consecutive samples (rad) still taken as the same IK branch.
 BRANCH_JUMP_RAD: float = 0.5
 
-#: Extra random-restart IK searches when the seeded search fails (seeded RNG, reproducible).
-IK_RESTARTS: int = 10
-
 #: Tolerance (rad) of the joint-limit checks of q0 and of every IK solution.
 JOINT_LIMIT_TOL_RAD: float = 1e-9
 
@@ -79,8 +79,10 @@ class TransferResult:
 
     t (s), x_base (N, 3) target tool positions in the base frame (m), q (N, n) rad, qd (N, n)
     rad/s, det_j (det J, or manipulability for n != 6), cond_j, ik_residual_m (m), flags
-    (list of ``{"sample": int, "reason": str}``; ``reason`` starts with ``ik_failed``,
-    ``ik_branch_jump``, ``ill_conditioned`` or ``singular``), qd_limits (n,) rad/s.
+    (list of ``{"sample": int, "reason": str}``; ``reason`` starts with ``unreachable`` (outside the
+    reach shell), ``ik_failed`` (inside it, no solver succeeded), ``ik_branch_jump``, ``ill_conditioned``
+    or ``singular``), qd_limits (n,) rad/s, v_base (N, 3) the commanded tool velocities in the base
+    frame (m/s).
     """
 
     robot: str
@@ -95,6 +97,7 @@ class TransferResult:
     ik_residual_m: np.ndarray
     flags: list[dict[str, Any]] = field(default_factory=list)
     cluster: int | None = None
+    v_base: np.ndarray | None = None
 
     @property
     def peak_abs_qd(self) -> np.ndarray:
@@ -267,38 +270,6 @@ def _check_inputs(t: np.ndarray, pos: np.ndarray, vel: np.ndarray) -> None:
         raise ValueError("t must be strictly increasing")
 
 
-def _pose_residual(ets: rtb.ETS, q: np.ndarray, target: np.ndarray) -> tuple[float, float]:
-    """Position (m) and orientation (rad) residual of the tool pose at q against ``target``."""
-    T = ets.eval(q)
-    dp = float(np.linalg.norm(T[:3, 3] - target[:3, 3]))
-    c = (np.trace(target[:3, :3].T @ T[:3, :3]) - 1.0) / 2.0
-    return dp, float(np.arccos(np.clip(c, -1.0, 1.0)))
-
-
-def _solve_ik(ets: rtb.ETS, target: np.ndarray, seed_q: np.ndarray, k: int,
-              restarts: int) -> tuple[np.ndarray, float, bool]:
-    """IK for one sample: a search from ``seed_q``, then ``restarts`` random restarts (RNG seeded
-    with the sample index, reproducible). A solution counts only when its pose residual is within
-    :data:`IK_RESIDUAL_TOL_M` and every joint within its limits (``ikine_LM`` can return a pose outside
-    them, with ``success`` False). Returns (q, position residual m, ok)."""
-    qlim = np.asarray(ets.qlim, dtype=float)
-    best_q, best_res = seed_q, np.inf
-    attempts = ((1, None), (restarts + 1, k)) if restarts > 0 else ((1, None),)
-    for slimit, rng_seed in attempts:
-        sol = ets.ikine_LM(target, q0=seed_q, tol=1e-14, ilimit=50, slimit=slimit,
-                           joint_limits=True, seed=rng_seed)
-        q = np.asarray(sol.q, dtype=float)
-        if not np.all(np.isfinite(q)):
-            continue
-        dp, dr = _pose_residual(ets, q, target)
-        inside = np.all(q >= qlim[0] - JOINT_LIMIT_TOL_RAD) and np.all(q <= qlim[1] + JOINT_LIMIT_TOL_RAD)
-        if dp <= IK_RESIDUAL_TOL_M and dr <= IK_RESIDUAL_TOL_M and inside:
-            return q, dp, True
-        if dp < best_res:
-            best_q, best_res = q, dp
-    return best_q, best_res, False
-
-
 def transfer(robot: rtb.Robot | str, t: np.ndarray, positions: np.ndarray, velocities: np.ndarray,
              q0: np.ndarray | None = None, qd_limits: float | np.ndarray | None = None,
              rotation: np.ndarray = EXP_TO_BASE, cond_threshold: float = COND_THRESHOLD,
@@ -349,21 +320,30 @@ def transfer(robot: rtb.Robot | str, t: np.ndarray, positions: np.ndarray, veloc
     cond_j = np.full(N, np.nan)
     residual = np.full(N, np.nan)
     flags: list[dict[str, Any]] = []
-    q_prev, prev_ok = q0, True
+    shell = reach_shell(robot)
+    out_of_reach = shell.outside(x_base)
+    q_prev, k_prev = q0, -1
     for k in range(N):
+        if out_of_reach[k]:
+            flags.append({"sample": k, "reason": f"unreachable: the target lies {shell.describe(x_base[k])}"})
+            continue
         target = T0.copy()
         target[:3, 3] = x_base[k]
-        # random restarts only after a solved sample: a run of failures is a path out of reach
-        qk, res, ok = _solve_ik(ets, target, q_prev, k, IK_RESTARTS if prev_ok else 0)
-        residual[k], prev_ok = res, ok
-        if not ok:
-            flags.append({"sample": k, "reason": f"ik_failed: no pose within the joint limits reaches the "
-                                                 f"target (best position residual {res:.3g} m; out of reach?)"})
+        ans = solve_ik(ets, target, q_prev, k, tol=IK_RESIDUAL_TOL_M, joint_tol=JOINT_LIMIT_TOL_RAD,
+                       restarts=IK_RESTARTS)
+        qk, residual[k] = ans.q, ans.residual_m
+        if not ans.ok:
+            last = (f"cond J = {cond_j[k_prev]:.3g} at the last solved sample {k_prev}" if k_prev >= 0
+                    else "no sample solved before")
+            flags.append({"sample": k, "reason": f"ik_failed: no solver found a pose within the joint limits "
+                                                 f"({ans.why()}) although the target lies "
+                                                 f"{shell.describe(x_base[k])}; {last}"})
             continue
         step = float(np.max(np.abs(qk - q_prev)))
         if step > BRANCH_JUMP_RAD:
             flags.append({"sample": k, "reason": f"ik_branch_jump: joints move {step:.3g} rad in one sample"})
         q[k] = q_prev = qk
+        k_prev = k
         J = ets.jacob0(qk)
         s = np.linalg.svd(J, compute_uv=False)
         cond_j[k] = s[0] / s[-1] if s[-1] > 0 else np.inf
@@ -377,7 +357,8 @@ def transfer(robot: rtb.Robot | str, t: np.ndarray, positions: np.ndarray, veloc
             flags.append({"sample": k, "reason": f"ill_conditioned: cond J = {cond_j[k]:.3g} > {cond_threshold:g}"})
         qd[k] = np.linalg.solve(J, v) if J.shape[0] == J.shape[1] else np.linalg.lstsq(J, v, rcond=None)[0]
     return TransferResult(robot=robot.name, q0=q0, qd_limits=lim, t=t, x_base=x_base, q=q, qd=qd,
-                          det_j=det_j, cond_j=cond_j, ik_residual_m=residual, flags=flags, cluster=cluster)
+                          det_j=det_j, cond_j=cond_j, ik_residual_m=residual, flags=flags, cluster=cluster,
+                          v_base=v_base)
 
 
 def transfer_summary(results: list[TransferResult]) -> dict[str, Any]:

@@ -2,7 +2,8 @@
 
 Every function takes data (arrays, DataFrames, result objects) and returns a matplotlib Figure;
 :func:`save` writes it as PNG and SVG. Axes carry units. One submodule per chapter's idea:
-``smoothness`` (SPARC), ``experiment`` (the data), ``clusters`` (prototypes), ``robot`` (transfer).
+``smoothness`` (SPARC), ``experiment`` (the data), ``clusters`` (prototypes), ``robot`` (transfer),
+``dynamics`` (accelerations, torques, execution, time scales).
 This package may import the other skilllib modules; none of them imports it.
 """
 from __future__ import annotations
@@ -18,6 +19,13 @@ from .clusters import (
     plot_silhouettes,
     plot_sparc_sensitivity,
     plot_stability,
+)
+from .dynamics import (
+    dynamics_figures,
+    plot_executed_speed,
+    plot_joint_accelerations,
+    plot_joint_torques,
+    plot_time_scales,
 )
 from .experiment import (
     PARTICIPANT_COLORS,
@@ -51,4 +59,5 @@ __all__ = [
     "plot_stability", "plot_sparc_sensitivity", "plot_cluster_participants",
     "plot_robot_joints", "plot_robot_pose", "plot_simple6_figure", "plot_start_poses",
     "plot_joint_velocities", "plot_frame_mapping",
+    "plot_joint_accelerations", "plot_joint_torques", "plot_executed_speed", "plot_time_scales", "dynamics_figures",
 ]

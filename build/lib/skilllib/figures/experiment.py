@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.collections import LineCollection
 
-from ..data import Recordings
+from ..data import Recordings, sort_ids
 from ..features import CONTACT_WINDOW, ONSET_SPEED, velocity
 from ..smoothness import DEFAULT_AMP_TH
 
@@ -18,8 +18,10 @@ PARTICIPANT_COLORS = tuple((0.0, 0.0, 0.0) if i == 7 else c for i, c in enumerat
 
 
 def _plabel(p: Any) -> str:
-    """Short label of participant ``p``: "P3" for a number, the id itself for a name ("P03", "anna")."""
-    return f"P{p}" if isinstance(p, (int, np.integer)) else str(p)
+    """Short label of participant ``p``: "P3" for an id of digits, the id itself otherwise ("P03", "anna",
+    "007": a leading zero is kept as written)."""
+    s = str(p)
+    return f"P{s}" if s.isdigit() and not s.startswith("0") else s
 
 
 def _pcolor(participants: list, p) -> tuple[float, float, float]:
@@ -39,7 +41,7 @@ def plot_trials_by_participant(recordings: Recordings, features: pd.DataFrame,
     trial against time from contact (s), one column per participant (two rows of participants).
     Selected trials in the participant's colour, excluded ones in grey."""
     f = features[features["status"] != "invalid"]
-    parts = sorted(f["participant"].unique())
+    parts = sort_ids(f["participant"].unique())
     ncol = int(np.ceil(len(parts) / 2))
     fig, axs = plt.subplots(4, ncol, figsize=(2.1 * ncol, 7.2), sharex=True, sharey="row", squeeze=False)
     for i, p in enumerate(parts):
@@ -109,7 +111,7 @@ def plot_participant_features(features: pd.DataFrame) -> plt.Figure:
     """Per participant, peak speed (m/s), contact speed (m/s, the selection window shaded), duration (s)
     and SPARC of every valid trial (box: quartiles; points: trials, selected in colour)."""
     f = features[features["status"] != "invalid"]
-    parts = sorted(f["participant"].unique())
+    parts = sort_ids(f["participant"].unique())
     cols = [("pv", "peak speed PV (m/s)"), ("contact_speed", "contact speed (m/s)"),
             ("duration", "duration onset-contact (s)"), ("sparc", "SPARC")]
     fig, axs = plt.subplots(len(cols), 1, figsize=(7.5, 8), sharex=True)
@@ -169,7 +171,7 @@ def plot_feature_space(features: pd.DataFrame, ax: plt.Axes | None = None,
     trials whose SPARC band the maximum cut-off fc ended (``sparc_capped``) ringed, and the dashed line
     :func:`threshold_bound` above which only such trials can lie."""
     f = features[features["status"] != "invalid"]
-    parts = sorted(f["participant"].unique())
+    parts = sort_ids(f["participant"].unique())
     fig, ax = plt.subplots(figsize=(6, 4)) if ax is None else (ax.figure, ax)
     ex = f[f["status"] == "excluded"]
     ax.scatter(ex["pv"], ex["sparc"], s=4, color="0.8", label="excluded")

@@ -1,0 +1,90 @@
+"""A CSV file as a table of text cells, with the physical line of every row, as pandas reads it.
+
+The first step of reading recordings (:func:`skilllib.data.read_recordings`): nothing is converted here,
+so that identifiers stay text exactly as written, and line numbers count physical lines of the file (a
+quoted cell spanning lines counts all of them), so that a message names the line an editor shows.
+Compressed files are opened as pandas opens them (``.gz``, ``.bz2``, ``.zip``, ``.xz``, ``.zst``).
+:class:`DataFormatError` is defined here and re-exported by :mod:`skilllib.data`.
+"""
+from __future__ import annotations
+
+import csv
+import io
+import re
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+MAX_QUOTE = 40  #: characters of a cell quoted in a message; longer cells are cut
+
+
+class DataFormatError(ValueError):
+    """The file cannot be read as recordings; the message names the file, line and column."""
+
+
+def quote(text: Any) -> str:
+    """A cell for a message: repr, cut to :data:`MAX_QUOTE` characters with its full length said."""
+    s = str(text)
+    if len(s) <= MAX_QUOTE:
+        return repr(s)
+    return f"{s[:MAX_QUOTE]!r}... ({len(s):,} characters)"
+
+
+def _read_text(path: Path) -> str:
+    """The file's text, decompressed as pandas infers from the extension; DataFormatError when missing,
+    a folder, or not UTF-8 text."""
+    from pandas.io.common import get_handle  # how read_csv opens (and decompresses) a path
+
+    if not path.exists():
+        raise DataFormatError(f"{path}: file not found")
+    if path.is_dir():
+        raise DataFormatError(f"{path}: is a directory, not a CSV file")
+    try:
+        with get_handle(path, "r", encoding="utf-8-sig", compression="infer") as h:
+            return h.handle.read()
+    except UnicodeDecodeError:
+        raise DataFormatError(f"{path}: not a text (UTF-8) CSV file (compressed files need their "
+                              f"extension: .gz, .bz2, .zip, .xz, .zst)") from None
+    except (OSError, EOFError, ValueError) as e:  # a damaged archive
+        raise DataFormatError(f"{path}: cannot be decompressed: {e}") from None
+
+
+def record_lines(text: str) -> np.ndarray:
+    """1-based physical line of each record of a CSV text after its header, blank lines included as
+    records (as ``read_csv(skip_blank_lines=False)`` keeps them): a quoted cell spanning lines counts them."""
+    if '"' not in text:  # one record per line
+        n = text.count("\n") + (0 if text.endswith("\n") else 1)
+        return np.arange(2, n + 1)
+    reader = csv.reader(io.StringIO(text))
+    starts, end = [], 0
+    for _ in reader:
+        starts.append(end + 1)
+        end = reader.line_num
+    return np.asarray(starts[1:], dtype=np.int64)
+
+
+def read_table(path: str | Path) -> tuple[pd.DataFrame, np.ndarray]:
+    """A CSV file as a table of text cells (nothing converted; blank lines kept as empty rows) and the
+    physical line of each row. DataFormatError for a missing, empty, binary or malformed file."""
+    path = Path(path)
+    text = _read_text(path)
+    if not text.strip():
+        raise DataFormatError(f"{path}: file is empty")
+    try:
+        df = pd.read_csv(io.StringIO(text), dtype=str, keep_default_na=False, skip_blank_lines=False,
+                         skipinitialspace=True)
+    except pd.errors.ParserError as e:  # e.g. "Expected 7 fields in line 12, saw 8"
+        msg = str(e).replace("Error tokenizing data. C error: ", "").strip()
+        m = re.search(r"in line (\d+)", msg)
+        if m and '"' in text:  # the parser counts records; name the physical line
+            lines = record_lines(text)
+            rec = int(m.group(1)) - 2
+            if 0 <= rec < len(lines):
+                msg = msg.replace(m.group(0), f"in line {lines[rec]}")
+        raise DataFormatError(f"{path}: not a valid CSV table: {msg}") from None
+    except pd.errors.EmptyDataError:
+        raise DataFormatError(f"{path}: file is empty") from None
+    lines = record_lines(text)[:len(df)]
+    return df, lines
