@@ -439,8 +439,10 @@ def test_default_run_writes_results_and_figures(tmp_path):
                           check=False, capture_output=True, text=True, cwd=tmp_path, timeout=600)
     assert proc.returncode == 0, proc.stderr
     res = _results(out)
-    assert res["dataset"] == {"path": "skilllib/datasets/cohort.csv", "n_trials": 1500, "n_participants": 10,
-                              "fs": 60.0, "n_resampled": 0}
+    assert res["dataset"] == {"path": "skilllib/datasets/cohort.csv", "synthetic": True, "n_trials": 1500,
+                              "n_participants": 10, "fs": 60.0, "n_resampled": 0}
+    svgs = [(out / f).read_text() for f in res["figures"] if f.endswith(".svg")]
+    assert all("Synthetic data: the book" in svg for svg in svgs), "every figure of the cohort says it is synthetic"
     assert res["filter"]["cutoff_hz"] is None and res["filter"]["chosen_by"] == "auto: not needed"
     assert res["sparc_params"] == {"fc": 20.0, "amp_th": 0.05, "padlevel": 4.0}
     assert len(res["trials"]) == 1500

@@ -675,6 +675,8 @@ def test_figures_are_written_only_when_asked_and_change_nothing_else(tmp_path, r
     want = {f"{n}.{ext}" for n in FIGURES for ext in ("png", "svg")}
     assert len(res["figures"]) == len(want) and set(res["figures"]) == want
     assert {p.name for p in out.iterdir()} == want | {"results.json"}
+    assert res["dataset"]["synthetic"] is False  # a user's file: no "synthetic data" footer on its figures
+    assert not any("Synthetic data" in (out / n).read_text() for n in want if n.endswith(".svg"))
     assert all((out / n).stat().st_size > 0 for n in want)
     assert plain_res.get("figures", []) == [] and plain.results.get("figures", []) == []
     assert {p.name for p in out_plain.iterdir()} == {"results.json"}
