@@ -16,11 +16,11 @@ roboticstoolbox arm:
   the tool orientation is held at that of ``q0`` (v has no angular part: w = 0).
 * **IK.** Levenberg-Marquardt (``ETS.ikine_LM``, the compiled solver) for the full pose, seeded
   with the previous sample's solution. Its ``tol`` bounds E = 0.5 e'e, not the position error, so
-  a tiny ``tol`` is asked for and the position residual |p(q) - p*| is checked here against
+  a tiny ``tol`` is asked for and the position residual ``|p(q) - p*|`` is checked here against
   :data:`IK_RESIDUAL_TOL_M` (and the orientation residual against the same number in rad).
 * **Jacobian and singularity.** ``ETS.jacob0`` (world frame). For a square J: det J and the
   2-norm condition number; for a redundant arm (n > 6) ``det_j`` is Yoshikawa's manipulability
-  sqrt(det(J J')) (equal to |det J| when J is square; Corke 2017, sec. 8.2.2) and qd is the
+  sqrt(det(J J')) (equal to ``|det J|`` when J is square; Corke 2017, sec. 8.2.2) and qd is the
   minimum-norm solution J^+ v (pseudo-inverse; Corke 2017, sec. 8.4.2).
 
 Problems are flagged per sample ({sample, reason}) and never hidden: an IK failure (unreachable
@@ -98,7 +98,7 @@ class TransferResult:
 
     @property
     def peak_abs_qd(self) -> np.ndarray:
-        """Peak |qd_j| per joint over the computed samples, rad/s (NaN if none was computed)."""
+        """Peak ``|qd_j|`` per joint over the computed samples, rad/s (NaN if none was computed)."""
         ok = np.all(np.isfinite(self.qd), axis=1)
         if not ok.any():
             return np.full(self.qd.shape[1], np.nan)
@@ -106,7 +106,7 @@ class TransferResult:
 
     @property
     def min_abs_det_j(self) -> float:
-        """Smallest |det J| (manipulability for n != 6) over the computed samples."""
+        """Smallest ``|det J|`` (manipulability for n != 6) over the computed samples."""
         return _nan_reduce(np.min, np.abs(self.det_j))
 
     @property
