@@ -31,7 +31,7 @@
 # file, replace its path.
 # ```
 
-# %%
+# %% tags=["hide-input"]
 import json
 import shutil
 import subprocess
@@ -100,7 +100,7 @@ converted
 # **The sampling rate** is not an option: it is read from the time stamps (the median over trials of
 # each trial's mean interval), so any rate works, as long as one file has one rate. Small jitter of the
 # time stamps is tolerated (the analysis then assumes uniform sampling at that rate). The checks and
-# their tolerances, from `skilllib.data`:
+# their tolerances, from [`skilllib.data`](#skilllib.data):
 
 # %%
 print(f"a trial whose median interval differs by more than {skilllib.data.RATE_TOLERANCE:.0%} from the file's "
@@ -424,7 +424,7 @@ assert (others < 0.5 * peaks_s6[:, [1, 5]].min(axis=1)).all(), (
 # ## Another robot, other limits
 #
 # `--robot` chooses the arm and its start pose; each comes with default joint velocity limits
-# (justified in `skilllib.robots`):
+# (justified in [`skilllib.robots`](#skilllib.robots)):
 
 # %%
 rows = []

@@ -325,7 +325,7 @@ def _entry(r: Renderer, e: Entry, level: int) -> list[str]:
     sig = signature(e)
     lines = [f"({e.label})=", f"{'#' * level} `{e.name}`", ""]
     tag = {"class": "class", "property": "property", "method": "method"}.get(e.kind, "function")
-    lines += [f"<p class=\"api-kind\">{tag} <code>{e.label}</code></p>", ""]
+    lines += [f"<div class=\"api-kind\">{tag} <code>{e.label}</code></div>", ""]
     if sig:
         lines += ["```python", sig, "```", ""]
     unit_text = ", ".join(f"`{u}`" for u in units) if units else "*none stated*"

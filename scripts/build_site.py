@@ -52,6 +52,9 @@ CACHE_INPUTS = ("skilllib", "data", "images", "environment.txt", "pyproject.toml
 # The kernel of the site build: figures inline as retina PNGs; MPLBACKEND=Agg in its environment so that
 # a subprocess a chapter starts (python -m skilllib run) does not print `Figure(650x600)` for each figure.
 KERNEL_ARGS = ["--matplotlib=inline", "--InlineBackend.figure_formats=retina"]
+# myst only warns about these; the build stops on them.
+FATAL_MYST = re.compile(r"Could not link citation|Error reading file|No target for internal reference|"
+                        r"Duplicate identifier")
 # Toc entries written at build time: file -> package whose API reference it is (scripts/api_page.py).
 GENERATED_PAGES = {"api.md": "skilllib"}
 
@@ -439,6 +442,11 @@ def build(project: Path, build_dir: Path, execute: bool, timeout: int, chapter_n
             print(f"  myst | {line}", flush=True)
     if proc.returncode != 0:
         raise BuildError(f"myst build --html failed (exit {proc.returncode}); the messages above name the page")
+    fatal = sorted({ln.strip() for ln in myst_log.splitlines() if FATAL_MYST.search(ln)})
+    if fatal:
+        raise BuildError("myst reported problems the site must not have (a citation without its entry in the "
+                         "bibliography, an unreadable .bib, a cross-reference without target, a duplicate "
+                         "label):\n  " + "\n  ".join(fatal))
     t_myst = time.perf_counter()
 
     # 3. Copy the site out, then 4. check it.

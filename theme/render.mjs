@@ -413,9 +413,11 @@ class Page {
   referenceSection() {
     const cite = this.data.references?.cite;
     if (!cite?.order?.length) return null;
-    // In citation order, as mystmd numbers them; each entry links its DOI (mystmd's formatted html).
+    // Alphabetical, as an author-year list reads; each entry links its DOI (mystmd's formatted html).
+    const sortKey = (label) => (cite.data[label]?.html ?? label).replace(/<[^>]*>/g, '').toLowerCase();
+    const labels = [...cite.order].sort((a, b) => sortKey(a).localeCompare(sortKey(b)));
     return h('section.references', [h('h2#references', 'References'),
-      h('ul', cite.order.map((label) => h('li', { id: `cite-${label}` }, [raw(cite.data[label]?.html ?? label)])))]);
+      h('ul', labels.map((label) => h('li', { id: `cite-${label}` }, [raw(cite.data[label]?.html ?? label)])))]);
   }
   render() {
     const fm = this.data.frontmatter ?? {};
@@ -507,10 +509,15 @@ const PREVIEW_BLOCKS = new Set(['p', 'ul', 'ol', 'div', 'pre', 'aside', 'figure'
 function isElement(node, tag) { return node?.type === 'element' && (!tag || node.tagName === tag); }
 function classes(node) { return [node?.properties?.className ?? []].flat(); }
 
-function stripIds(node) {
+// A copy of a page's element for a preview on another page: no ids (they would repeat), links within
+// its page made to point at that page.
+function previewCopy(node, pageHref) {
   const copy = structuredClone(node);
   const walk = (n) => {
-    if (n.properties) { delete n.properties.id; }
+    if (n.properties) {
+      delete n.properties.id;
+      if (typeof n.properties.href === 'string' && n.properties.href.startsWith('#')) n.properties.href = `${pageHref}${n.properties.href}`;
+    }
     n.children = (n.children ?? []).filter((c) => !(isElement(c) && classes(c).includes('anchor')));
     n.children.forEach(walk);
   };
@@ -528,20 +535,26 @@ function collectPreviews(pageHref, tree, into) {
         const key = `${pageHref}#${id}`;
         if (/^h[2-6]$/.test(node.tagName)) {
           // the heading and what follows it up to ~600 characters of text or the next heading
-          const parts = [stripIds(node)];
+          const parts = [previewCopy(node, pageHref)];
           let chars = 0;
           for (const next of kids.slice(i + 1)) {
             if (!isElement(next)) continue;
             if (/^h[1-6]$/.test(next.tagName) || chars > 400 || parts.length > 3) break;
             if (!PREVIEW_BLOCKS.has(next.tagName)) continue;
-            parts.push(stripIds(next));
+            parts.push(previewCopy(next, pageHref));
             chars += JSON.stringify(next).length > 4000 ? 600 : plainHast(next).length;
           }
           into.set(key, parts);
-        } else if (node.tagName === 'figure' || classes(node).includes('math-block')) {
-          into.set(key, [stripIds(node)]);
+        } else if (node.tagName === 'figure') {
+          // the image(s) and the caption, not the text the figure's cell printed
+          const fig = previewCopy(node, pageHref);
+          const drop = (n) => { n.children = (n.children ?? []).filter((c) => !(isElement(c, 'pre') && classes(c).includes('output'))); n.children.forEach(drop); };
+          drop(fig);
+          into.set(key, [fig]);
+        } else if (classes(node).includes('math-block')) {
+          into.set(key, [previewCopy(node, pageHref)]);
         } else if (!into.has(key)) {
-          into.set(key, [stripIds(node)]);
+          into.set(key, [previewCopy(node, pageHref)]);
         }
       }
       walk(node);

@@ -108,9 +108,10 @@
       if (marked) {
         marked.classList.add('active');
         marked.setAttribute('aria-current', 'location');
-        if (WIDE.matches && outline.scrollHeight > outline.clientHeight) {
-          var box = outline.getBoundingClientRect(), r = marked.getBoundingClientRect();
-          if (r.top < box.top || r.bottom > box.bottom) marked.scrollIntoView({ block: 'nearest' });
+        var nav = outline.parentNode; // the scrolling column beside the text
+        if (WIDE.matches && nav.scrollHeight > nav.clientHeight) {
+          var box = nav.getBoundingClientRect(), r = marked.getBoundingClientRect();
+          if (r.top < box.top || r.bottom > box.bottom) nav.scrollTop += r.top - box.top - box.height / 2;
         }
       }
     };
