@@ -656,6 +656,7 @@ function tocFiles(toc) {
 }
 
 async function main() {
+  const t0 = performance.now();
   const config = await fetchFrom('/config.json');
   if ((config.projects ?? []).length !== 1) fail(`expected one project in config.json, found ${(config.projects ?? []).length}.`);
   const project = config.projects[0];
@@ -797,7 +798,7 @@ async function main() {
     if (contents.has(p.slug) && !fs.existsSync(path.join(OUT, p.href))) failures.push(`page "${p.file}": ${p.href} was not written.`);
   }
   if (failures.length) fail(`the site is incomplete:\n  - ${failures.join('\n  - ')}`);
-  process.stdout.write(`theme: wrote ${pages.length} pages, ${pendingAssets.size} files, ${documents.length} search sections to ${OUT}\n`);
+  process.stdout.write(`theme: wrote ${pages.length} pages, ${pendingAssets.size} files, ${documents.length} search sections to ${OUT} in ${((performance.now() - t0) / 1000).toFixed(1)} s\n`);
 }
 
 main().catch((err) => fail(err.stack ?? String(err)));

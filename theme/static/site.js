@@ -101,6 +101,12 @@
         if (targets[i] && targets[i].getBoundingClientRect().top <= line) index = i;
       }
       if (index < 0 && targets.length) index = 0;
+      // at the end of the page the last sections cannot scroll up to the line: mark the last one in view
+      if (window.innerHeight + window.scrollY >= document.documentElement.scrollHeight - 2) {
+        for (var j = targets.length - 1; j > index; j--) {
+          if (targets[j] && targets[j].getBoundingClientRect().top < window.innerHeight) { index = j; break; }
+        }
+      }
       var link = links[index] || null;
       if (link === marked) return;
       if (marked) { marked.classList.remove('active'); marked.removeAttribute('aria-current'); }
