@@ -126,11 +126,11 @@ def main(argv: list[str] | None = None) -> int:
     project = args.project.resolve()
     build_dir = (args.build_dir or project / "_build").resolve()
     state = State()
+    seen = watched_files(project)  # before the build: a file saved during it is rebuilt next
     build(project, build_dir, state)
     server = ThreadingHTTPServer((args.host, args.port), make_handler(build_dir / "html", state))
     threading.Thread(target=server.serve_forever, daemon=True).start()
     print(f"serve: http://{args.host}:{server.server_address[1]}/ (Ctrl+C stops)", flush=True)
-    seen = watched_files(project)
     try:
         while True:
             time.sleep(args.interval)
@@ -143,8 +143,8 @@ def main(argv: list[str] | None = None) -> int:
             print("serve: changed " + ", ".join(str(p.relative_to(project) if p.is_relative_to(project) else p)
                                                 for p in changed[:5]) + (" ..." if len(changed) > 5 else ""), flush=True)
             sync_scripts(changed)
+            seen = watched_files(project)  # after the sync (it writes the pair), before the build
             build(project, build_dir, state)
-            seen = watched_files(project)  # the sync and the build wrote files of their own
     except KeyboardInterrupt:
         print("serve: stopped", flush=True)
     finally:

@@ -16,6 +16,7 @@ import re
 import shutil
 import subprocess
 import sys
+import time
 from dataclasses import dataclass, field
 from html.parser import HTMLParser
 from pathlib import Path
@@ -787,3 +788,55 @@ def test_cache_reuses_outputs_when_only_prose_changed(tmp_path):
     assert bs.ExecutionCache(tmp_path / "cache", bs.inputs_digest(project)).get(src, "n.ipynb") is None, \
         "a changed data file must execute again"
     assert len(list((tmp_path / "cache").glob("n-*.ipynb"))) == 1
+
+
+def test_serve_rebuilds_on_save_and_pages_reload(tmp_path):
+    """`make serve`: the site is served, a saved edit is rebuilt and the served page has it; the pages
+    poll the server's build number to reload themselves."""
+    import signal
+    import urllib.request
+
+    built_site("fixture")  # its execution cache makes the builds below render-only
+    project = tmp_path / "site"
+    shutil.copytree(FIXTURE, project)
+    cfg = yaml.safe_load((project / "myst.yml").read_text(encoding="utf-8"))
+    cfg["site"]["template"] = str(ROOT / "theme")
+    (project / "myst.yml").write_text(yaml.safe_dump(cfg, sort_keys=False), encoding="utf-8")
+    if (SITES["fixture"][1] / "cache").is_dir():
+        shutil.copytree(SITES["fixture"][1] / "cache", tmp_path / "build" / "cache")
+    proc = subprocess.Popen([sys.executable, str(ROOT / "scripts" / "serve.py"), "--project", str(project),
+                             "--build-dir", str(tmp_path / "build"), "--port", "0", "--interval", "0.3"],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, stdin=subprocess.DEVNULL)
+    try:
+        lines = []
+        for line in proc.stdout:
+            lines.append(line)
+            m = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+            if m:
+                base = m.group(0)
+                break
+        else:
+            pytest.fail("serve.py did not start: " + "".join(lines))
+
+        def get(path: str) -> str:
+            with urllib.request.urlopen(base + path, timeout=10) as r:
+                return r.read().decode()
+
+        assert json.loads(get("__build")) == {"id": 1, "ok": True}
+        page = get("index.html")
+        assert "fetch('/__build')" in page and "Fixture book" in page
+        index = project / "index.md"
+        index.write_text(index.read_text(encoding="utf-8") + "\nA sentence saved while serving.\n", encoding="utf-8")
+        deadline = time.monotonic() + 120
+        while json.loads(get("__build"))["id"] < 2:
+            assert proc.poll() is None and time.monotonic() < deadline, "no rebuild after the save"
+            time.sleep(0.3)
+        assert "A sentence saved while serving." in get("index.html")
+        assert not (tmp_path / "build" / "html" / "index.html").read_text(encoding="utf-8").count("__build"), \
+            "the reload script belongs to the server, not to the built files"
+    finally:
+        proc.send_signal(signal.SIGINT)
+        try:
+            proc.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            proc.kill()
