@@ -26,16 +26,29 @@ serve: venv theme
 
 # Every chapter is executed once: nbmake runs copies in _executed/ and keeps their outputs
 # (--overwrite; nbmake skips any path with a _build folder), in the chapters' kernel "skilllib" with
-# retina figures as the site build, and the site tests render those outputs (BOOK_EXECUTED;
-# scripts/build_site.py --executed) instead of executing again. They also fill the site's cache.
+# retina figures as the site build, and the tests of the book's site (marker book_site) render those
+# outputs (BOOK_EXECUTED; scripts/build_site.py --executed) instead of executing again; they also fill
+# the site's cache. Two lanes use the two cores: (a) nbmake, then the book_site tests and the JupyterLab
+# test (marker jupyterlab), its output kept in _build/test-book.log and shown at the end; (b) every
+# other test. Both must pass.
 EXECUTED := _executed
 test: venv theme
 	rm -rf $(EXECUTED) && mkdir -p $(EXECUTED) _build/ipython/profile_default
 	cp notebooks/[0-9][0-9]_*.ipynb $(EXECUTED)/
 	echo 'c.InlineBackend.figure_formats = {"retina"}' > _build/ipython/profile_default/ipython_kernel_config.py
-	IPYTHONDIR=$(CURDIR)/_build/ipython \
-	  $(BIN)/python -m pytest --nbmake --nbmake-timeout=900 --overwrite $(EXECUTED)/[0-9][0-9]_*.ipynb
-	BOOK_EXECUTED=$(CURDIR)/$(EXECUTED) $(BIN)/python -m pytest tests
+	@( IPYTHONDIR=$(CURDIR)/_build/ipython \
+	    $(BIN)/python -m pytest -p no:cacheprovider --nbmake --nbmake-timeout=900 --overwrite $(EXECUTED)/[0-9][0-9]_*.ipynb \
+	  && BOOK_EXECUTED=$(CURDIR)/$(EXECUTED) $(BIN)/python -m pytest -p no:cacheprovider tests -m "book_site or jupyterlab" \
+	) > _build/test-book.log 2>&1 & book=$$!; \
+	trap 'kill $$book 2>/dev/null' INT TERM; \
+	echo "lane (a): nbmake of the chapters, then the book's site tests and JupyterLab (log: _build/test-book.log)"; \
+	echo "lane (b): every other test"; \
+	$(BIN)/python -m pytest tests -m "not (book_site or jupyterlab)"; other=$$?; \
+	wait $$book; lane_a=$$?; \
+	echo "==================== lane (a): nbmake and the book's site ===================="; \
+	cat _build/test-book.log; \
+	echo "make test: lane (a) exit $$lane_a, lane (b) exit $$other"; \
+	test $$lane_a -eq 0 -a $$other -eq 0
 
 # JupyterLab on the repository with chapter 1 open, the book's kernel (scripts/kernel.py) and MyST rendering.
 lab: venv

@@ -25,7 +25,7 @@ from pathlib import Path
 import nbformat
 import pytest
 
-from test_site import ROOT, SITES, built_site
+from test_site import ROOT, SITE_PARAMS, built_site
 
 websocket = pytest.importorskip("websocket", reason="websocket-client is needed to drive Chromium")
 
@@ -115,7 +115,7 @@ def browser():
     b.close()
 
 
-@pytest.fixture(scope="module", params=list(SITES))
+@pytest.fixture(scope="module", params=SITE_PARAMS)
 def site(request):
     return built_site(request.param)
 
@@ -393,6 +393,7 @@ class JupyterLab:
 NOTEBOOK = "[...jupyterapp.shell.widgets('main')].find(w => w.content && w.content.widgets && w.sessionContext)"
 
 
+@pytest.mark.jupyterlab
 def test_chapter_1_runs_in_jupyterlab_with_myst(browser, tmp_path):
     """`make lab`'s JupyterLab: chapter 1 opens with the book's kernel, jupyterlab-myst renders its MyST
     (an equation reference shows its equation's number, an admonition is an admonition), every cell runs
