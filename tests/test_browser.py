@@ -87,7 +87,13 @@ class Browser:
 
     def wait_for(self, expression: str, timeout: float = 15) -> None:
         deadline = time.monotonic() + timeout
-        while not self.eval(f"!!({expression})"):
+        while True:
+            try:
+                if self.eval(f"!!({expression})"):
+                    return
+            except RuntimeError as err:  # the page navigated while the expression ran: ask the new one
+                if "navigated or closed" not in str(err) and "context was destroyed" not in str(err):
+                    raise
             if time.monotonic() > deadline:
                 raise AssertionError(f"timed out waiting for {expression}")
             time.sleep(0.05)
@@ -408,10 +414,13 @@ def test_chapter_1_runs_in_jupyterlab_with_myst(browser, tmp_path):
         kernel = browser.eval(f"(() => {{ const k = {NOTEBOOK}.sessionContext; return [k.session.kernel.name, k.kernelDisplayName]; }})()")
         assert kernel == ["skilllib", "Smoothness-based prototypes (skilllib)"], kernel
         # MyST: a reference to an equation reads as the number its equation shows; a note is an admonition
-        browser.wait_for("document.getElementById('eq-sparc')", timeout=60)
+        chapter = nbformat.read(ROOT / LAB_CHAPTER, as_version=4)
+        n_refs = sum(c.source.count("](#eq-sparc)") for c in chapter.cells if c.cell_type == "markdown")
+        refs_js = """[...document.querySelectorAll('.jp-MarkdownCell a[href="#eq-sparc"]')]
+            .filter(a => !a.closest('#eq-sparc')).map(a => a.textContent.trim())"""
+        browser.wait_for(f"document.getElementById('eq-sparc') && {refs_js}.length >= {n_refs}", timeout=60)
         number = browser.eval("document.getElementById('eq-sparc').textContent.trim().match(/\\((\\d+)\\)$/)[0]")
-        refs = browser.eval("""[...document.querySelectorAll('.jp-MarkdownCell a[href="#eq-sparc"]')]
-            .filter(a => !a.closest('#eq-sparc')).map(a => a.textContent.trim())""")
+        refs = browser.eval(refs_js)
         assert refs and all(r == number for r in refs), f"references to eq-sparc read {refs}, the equation shows {number}"
         assert browser.eval("[...document.querySelectorAll('.jp-MarkdownCell aside')].some(a => /Note/.test(a.textContent))")
         # run every cell, as a reader stepping through would
@@ -428,8 +437,7 @@ def test_chapter_1_runs_in_jupyterlab_with_myst(browser, tmp_path):
         assert shown == 0
         browser.wait_for("[...document.querySelectorAll('.jp-OutputArea-output img')].some(i => i.naturalWidth > 100)")
         n_figures = browser.eval("[...document.querySelectorAll('.jp-OutputArea-output img')].filter(i => i.naturalWidth > 100).length")
-        expected = sum(1 for c in nbformat.read(ROOT / LAB_CHAPTER, as_version=4).cells
-                       if c.cell_type == "code" and "#| label: fig-" in c.source)
+        expected = sum(1 for c in chapter.cells if c.cell_type == "code" and "#| label: fig-" in c.source)
         assert n_figures >= expected > 0, f"{n_figures} figures shown, {expected} figure cells"
     finally:
         browser.send("Emulation.clearDeviceMetricsOverride")
