@@ -86,7 +86,11 @@ def _build(name: str) -> "Site":
         raise RuntimeError(f"myst.yml ({name}) lists pages that do not exist: {missing}")
     out = build_dir / "html"
     stamp = out / "_static" / "pages.json"
-    if not stamp.exists() or stamp.stat().st_mtime < _newest_source(project, files, cfg):
+    stale = not stamp.exists() or stamp.stat().st_mtime < _newest_source(project, files, cfg)
+    if not stale:  # same sources, but built at another commit: its footer would name that commit
+        built_at = json.loads(stamp.read_text(encoding="utf-8")).get("build", {}).get("commit")
+        stale = built_at != _build_module().build_info(project)["BOOK_COMMIT"]
+    if stale:
         if shutil.which("node") is None:
             raise RuntimeError("node is not installed: the site cannot be built (Node 18+ is required)")
         executed = os.environ.get("BOOK_EXECUTED") if name == "book" else None  # set by `make test`
