@@ -10,16 +10,16 @@
 #       format_version: '1.3'
 #       jupytext_version: 1.19.6
 #   kernelspec:
-#     display_name: Python 3 (ipykernel)
+#     display_name: Smoothness-based prototypes (skilllib)
 #     language: python
-#     name: python3
+#     name: skilllib
 # ---
 
 # %% [markdown]
 # # SPARC from first principles
 #
 # The paper describes the skill of every demonstration by one number, the spectral arc length SPARC of
-# its speed profile (Balasubramanian et al. 2015). This chapter builds that number from scratch: why
+# its speed profile [@balasubramanian2015]. This chapter builds that number from scratch: why
 # intermittent movements are less smooth, how the Fourier spectrum of a speed profile reveals it, why
 # the *length* of that spectrum's curve measures it, and how the integral of the definition becomes the
 # sum that the code computes. It then tries the measure on the kinds of movement the experiment
@@ -34,7 +34,7 @@
 # the notebook, so the book does not build when a statement stops being true.
 # ```
 
-# %%
+# %% tags=["hide-input"]
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -62,13 +62,13 @@ def movement(onsets, T=0.6, D=0.1, fs=FS):
 # ## Smooth movements and intermittency
 #
 # Point-to-point arm movements of healthy people have bell-shaped speed profiles, across speeds and
-# loads (the paper's related work: Nelson 1983; Nagasaki 1989; Schaal 2002): one peak, no hesitation.
-# Smoothness has been seen as the organising principle of motion (Hogan 1984) and as a mark of skill
-# (Nagasaki 1989). In sensorimotor control a smooth movement is a *continual*, non-intermittent one
-# (Balasubramanian et al. 2015): poor planning, poor execution or an unfamiliar task break a movement
+# loads [the paper's related work: @nelson1983; @nagasaki1989; @schaal2002]: one peak, no hesitation.
+# Smoothness has been seen as the organising principle of motion [@hogan1984] and as a mark of skill
+# [@nagasaki1989]. In sensorimotor control a smooth movement is a *continual*, non-intermittent one
+# [@balasubramanian2015]: poor planning, poor execution or an unfamiliar task break a movement
 # into submovements, and the speed dips between them.
 #
-# A convenient model of one smooth submovement is the minimum-jerk profile (Flash & Hogan 1985): a
+# A convenient model of one smooth submovement is the minimum-jerk profile [@flash1985]: a
 # movement of amplitude $D$ (m) and duration $T$ (s) has speed
 # $v(t) = \frac{D}{T}\, 30\, \tau^2 (1-\tau)^2$, $\tau = t/T \in [0, 1]$, with its peak $1.875\,D/T$ at
 # mid-time. Intermittency is a sum of such submovements, each starting before the previous one ends.
@@ -119,7 +119,7 @@ assert dip(profiles["two, 0.5 s apart"]) < dip(profiles["two, 0.3 s apart"]), "c
 #
 # The computer sees $N$ samples $v_n = v(n/f_s)$, so it takes the discrete Fourier transform (FFT) at
 # the frequencies $f_k = k f_s / n_{\mathrm{fft}}$; we come back to $n_{\mathrm{fft}}$ below.
-# `sparc_spectrum` returns that spectrum with everything SPARC reads from it.
+# [`sparc_spectrum`](#skilllib.smoothness.sparc_spectrum) returns that spectrum with everything SPARC reads from it.
 
 # %%
 s = sparc_spectrum(one, FS)
@@ -235,7 +235,7 @@ assert max(abs(by_pad[p] - by_pad[4]) for p in (5, 6)) < 0.01, "text: beyond pad
 # %% [markdown]
 # ## From the integral to the sum the code computes
 #
-# The definition of Balasubramanian et al. (2015) is
+# The definition of @balasubramanian2015 is
 #
 # $$
 # \mathrm{SPARC} = -\int_0^{\omega_c} \left[ \left(\frac{1}{\omega_c}\right)^2 +
@@ -265,7 +265,7 @@ assert max(abs(by_pad[p] - by_pad[4]) for p in (5, 6)) < 0.01, "text: beyond pad
 # = -\sum_{k=0}^{K-1} \sqrt{\frac{1}{K^2} + (\hat V_{k+1} - \hat V_k)^2} .
 # $$ (eq-sparc-sum)
 #
-# This is what the authors' code computes, and `skilllib.sparc` with it (the test suite checks the two
+# This is what the authors' code computes, and [`skilllib.sparc`](#skilllib.smoothness.sparc) with it (the test suite checks the two
 # against each other to $10^{-9}$ on generated bells, overlapping submovements, noisy and truncated
 # profiles and single samples, with other parameters and sampling rates). Here it is by hand on one trial
 # like those of the experiment: a 1 s minimum-jerk movement cut at contact at 0.8 s, at 60 Hz.
@@ -488,7 +488,7 @@ assert round(sweep["60 Hz"].min(), 2) == -1.63 and round(sweep["60 Hz"].max(), 2
 # %% [markdown]
 # ## Which cut-off: the authors' 10 Hz or the paper's "0 to 20 Hz"?
 #
-# The KI 2020 paper computes SPARC "within the frequency range 0 to 20 Hz". That is the default of the
+# The KI 2020 paper [@maldonado2020] computes SPARC "within the frequency range 0 to 20 Hz". That is the default of the
 # SPARC authors' MATLAB code (`SpectralArcLength`, parameters [0.05, 20, 4]); their Python code, whose
 # computation `skilllib` reproduces, defaults to a maximum cut-off $f_c$ = 10 Hz. With an adaptive
 # cut-off, $f_c$ matters only when the spectrum still reaches the threshold at $f_c$. For the profiles of
@@ -819,8 +819,8 @@ assert grid_table["squared, padlevel 4"].iloc[-1] < 1.5 * grid_table["squared, p
 # %% [markdown]
 # ## LDLJ beside SPARC
 #
-# The other established smoothness measure is the log dimensionless jerk (Balasubramanian et al.
-# 2015), computed in the time domain from the second derivative of speed:
+# The other established smoothness measure is the log dimensionless jerk
+# [@balasubramanian2015], computed in the time domain from the second derivative of speed:
 #
 # $$
 # \mathrm{LDLJ} = -\ln \left| -\frac{(t_2 - t_1)^3}{v_{\mathrm{peak}}^2} \int_{t_1}^{t_2}

@@ -9,15 +9,15 @@
 #       format_version: '1.3'
 #       jupytext_version: 1.19.6
 #   kernelspec:
-#     display_name: Python 3 (ipykernel)
+#     display_name: Smoothness-based prototypes (skilllib)
 #     language: python
-#     name: python3
+#     name: skilllib
 # ---
 
 # %% [markdown]
 # # The experiment and its data
 #
-# Maldonado & Zetzsche (KI 2020) asked ten people to touch a box with a virtual spoon at a prescribed
+# @maldonado2020 asked ten people to touch a box with a virtual spoon at a prescribed
 # speed. This chapter describes the task and the device, and the open format in which the book keeps
 # recordings. It presents the generative model that stands in for the unpublished recordings and checks
 # that model against every number the paper publishes. It then turns each trial into a segment from
@@ -26,7 +26,7 @@
 #
 # ```{note}
 # **The data in this chapter are synthetic.** The paper's recordings are not public. Every trial shown
-# here was made by the seeded generative model in `skilllib.cohort` (function `generate_cohort`, seed 1:
+# here was made by the seeded generative model in [`skilllib.cohort`](#skilllib.cohort) (function [`generate_cohort`](#skilllib.cohort.generate_cohort), seed 1:
 # the first seed that meets every calibration target, see below and `data/README.md`), calibrated to the
 # paper's aggregate numbers, and committed as `data/cohort.csv`.
 # Nothing here is a measurement of a person. The same loader and feature code run on real recordings in
@@ -34,7 +34,7 @@
 # checked by a hidden cell of the notebook, so the book does not build when a statement stops being true.
 # ```
 
-# %%
+# %% tags=["hide-input"]
 import time
 from pathlib import Path
 
@@ -59,8 +59,8 @@ COHORT_CSV = skilllib.datasets.cohort_path()  # data/cohort.csv in the repositor
 # red *contact box*. A trial starts with the spoon tip resting in a semi-transparent *start box* above
 # the contact box. The participant moves down in a roughly vertical plane and touches the top of the box,
 # aiming at a contact speed of 0.5 m/s. After the touch the tip stays briefly on the surface. The paper
-# records 10 participants x 150 trials, with the tip position sampled at 60 Hz (Maldonado & Zetzsche
-# 2020, Sect. 5; Maldonado et al. 2019).
+# records 10 participants x 150 trials, with the tip position sampled at 60 Hz
+# [@maldonado2020, Sect. 5; @maldonado2019].
 #
 # Axes follow the paper's Fig. 1: $x$ mediolateral (side to side), $y$ vertical (up), $z$
 # anteroposterior (forward and back). Units are metres and seconds. The Phantom Premium 1.5 reaches about
@@ -79,7 +79,7 @@ COHORT_CSV = skilllib.datasets.cohort_path()  # data/cohort.csv in the repositor
 # | `x`, `y`, `z` | m | spoon-tip position in the device frame |
 # | `contact` | 0/1 | 1 while the tip touches the contact surface |
 #
-# A trial's rows are contiguous and in time order. `skilllib.data.read_recordings` reads and checks a
+# A trial's rows are contiguous and in time order. [`skilllib.data.read_recordings`](#skilllib.data.read_recordings) reads and checks a
 # file. Problems with the file itself raise `DataFormatError` with the file, line and column: a missing
 # column, a cell that is not a number, positions in millimetres, time in milliseconds, or mixed sampling
 # rates. Problems with a single trial mark that trial `invalid` with a reason and the rest goes on; those
@@ -112,17 +112,17 @@ print(f"generate_cohort(seed={synthetic.seed}) written again equals {COHORT_CSV.
 # The model builds each trial from published regularities of arm movements; it is not fitted to
 # anyone's trajectories.
 #
-# **Submovements.** The vertical drop of the tip is a sum of minimum-jerk submovements (Flash & Hogan 1985).
+# **Submovements.** The vertical drop of the tip is a sum of minimum-jerk submovements [@flash1985].
 # Decomposing reaching movements into overlapping submovements with onset, duration and amplitude is the
-# standard account of intermittency (Rohrer & Hogan 2003). One submovement of amplitude $D$ and duration
+# standard account of intermittency [@rohrer2003]. One submovement of amplitude $D$ and duration
 # $T$ has speed
 #
 # $$ v(\tau) = \frac{D}{T}\,30\,\tau^2 (1-\tau)^2, \qquad \max v = 1.875\,\frac{D}{T} \text{ at } \tau = 0.5 . $$ (eq-mj)
 #
-# Normalised speed profiles of vertical arm movements keep their shape across speed and load (Atkeson &
-# Hollerbach 1985). In *downward* movements the acceleration phase is relatively longer than in upward
-# ones (Papaxanthis et al. 1998), and the relative time to peak speed $k$ moves above 0.5 for fast
-# movements and below 0.5 for slow ones (Nagasaki 1989). The model therefore joins the rising half of a
+# Normalised speed profiles of vertical arm movements keep their shape across speed and load
+# [@atkeson1985]. In *downward* movements the acceleration phase is relatively longer than in upward
+# ones [@papaxanthis1998], and the relative time to peak speed $k$ moves above 0.5 for fast
+# movements and below 0.5 for slow ones [@nagasaki1989]. The model therefore joins the rising half of a
 # minimum-jerk bell of duration $2kT$ to the falling half of one of duration $2(1-k)T$. The two halves
 # share the peak [](#eq-mj) and the acceleration is continuous. $k$ is a participant trait (0.5–0.6),
 # decreases by 0.2 per second of duration and varies from trial to trial.
@@ -131,12 +131,12 @@ print(f"generate_cohort(seed={synthetic.seed}) written again equals {COHORT_CSV.
 # 0.5 m/s. Without a correction, the primary submovement aims *through* the surface: it is planned so that
 # the tip reaches the box on the falling flank of its bell, at the intended contact speed. The approach
 # ends there with non-zero speed, a truncated bell. In many trials the primary instead stops short of the
-# surface, as primary submovements tend to do (Meyer et al. 1988; Elliott et al. 2004). A corrective
+# surface, as primary submovements tend to do [@meyer1988; @elliott2004]. A corrective
 # submovement then starts during its deceleration, and its amplitude is solved so that the tip reaches
 # the surface at the intended contact speed. Faster primaries are less accurate, so the probability of a
-# correction grows with the primary's peak speed (Meyer et al. 1988). Corrective submovements are brief
+# correction grows with the primary's peak speed [@meyer1988]. Corrective submovements are brief
 # (0.15–0.35 s) and start, on average, during the primary's deceleration. Whether they blend into the
-# primary or show as a second peak decides how much they lower SPARC (Balasubramanian et al. 2015).
+# primary or show as a second peak decides how much they lower SPARC [@balasubramanian2015].
 #
 # **Participants and trials.** Each participant has a start-to-surface distance (0.08–0.2 m, inside the
 # device's 267 mm vertical range), a preferred primary duration (never below 0.2 s, an assumption
@@ -171,13 +171,13 @@ cohort.model_table()
 # widely in peak speed, contact speed and duration (its Fig. 1b); silhouette analysis found valid
 # clusterings for every $k$ from 2 to 16; and six clusters gave an average silhouette of 0.337, with
 # centres whose PVs were well separated. Those are the paper's numbers; the cohort's are in the column
-# "obtained". The paper names K-means from scikit-learn, and nothing more: it does not say whether it
+# "obtained". The paper names K-means from scikit-learn [@pedregosa2011], and nothing more: it does not say whether it
 # scaled the features, nor how many restarts or which seed it used. The book clusters the **raw** (PV in
 # m/s, SPARC) tuples of the selected trials, since the paper mentions no scaling, with `n_init=10`
 # (scikit-learn's default when the paper was written) and `random_state=0` (the book's choice), via
-# `skilllib.prototypes.silhouette_sweep`; chapter 3 shows what these choices change. A clustering is
+# [`skilllib.prototypes.silhouette_sweep`](#skilllib.prototypes.silhouette_sweep); chapter 3 shows what these choices change. A clustering is
 # "valid" when its average silhouette is positive and every cluster has at least one trial above the
-# average (scikit-learn's silhouette example). The table's last column says whether each target is met;
+# average (scikit-learn's silhouette example, which the paper cites [@sklearnsilhouette]). The table's last column says whether each target is met;
 # the per-$k$ averages follow it.
 
 # %%
@@ -429,7 +429,7 @@ assert round(features.SPARC_PARAMS["fc"] * sel.duration.median()) == 5, "text: a
 # other properties of a segment may drive SPARC as well: its duration (length), how much of the bell the
 # contact cuts off (the *contact ratio*, contact speed divided by PV: 1 means contact at peak speed) and
 # PV. The table gives the share of SPARC's variance across the selected trials that each explains alone
-# and all together (linear least squares, `skilllib.duration.variance_explained`), with the book's 20 Hz
+# and all together (linear least squares, [`skilllib.duration.variance_explained`](#skilllib.duration.variance_explained)), with the book's 20 Hz
 # and, for comparison, with 10 Hz:
 
 # %%
@@ -549,9 +549,3 @@ fig = figures.plot_feature_space(feats)
 #   even at 20 Hz (flagged `sparc_capped`). On these segments SPARC ranks trials mainly by how abruptly
 #   the contact ends them and by their length; the generator's corrective submovements lower SPARC only
 #   once those two are held fixed. The clustering chapter takes this into account.
-#
-# **References.** Atkeson & Hollerbach 1985, J Neurosci 5:2318. Balasubramanian et al. 2015, J NeuroEng
-# Rehabil 12:112. Elliott et al. 2004, J Mot Behav 36:339. Flash & Hogan 1985, J Neurosci 5:1688.
-# Maldonado et al. 2019 (the VR experiment). Maldonado & Zetzsche 2020, KI 2020. Meyer et al. 1988,
-# Psychol Rev 95:340. Nagasaki 1989, Exp Brain Res 74:319. Papaxanthis et al. 1998, Neurosci Lett 253:103.
-# Rohrer & Hogan 2003, Biol Cybern 89:190.

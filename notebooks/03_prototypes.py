@@ -10,9 +10,9 @@
 #       format_version: '1.3'
 #       jupytext_version: 1.19.6
 #   kernelspec:
-#     display_name: Python 3 (ipykernel)
+#     display_name: Smoothness-based prototypes (skilllib)
 #     language: python
-#     name: python3
+#     name: skilllib
 # ---
 
 # %% [markdown]
@@ -36,7 +36,7 @@
 # states is checked by a hidden cell of the notebook, so the book does not build when one stops holding.
 # ```
 
-# %%
+# %% tags=["hide-input"]
 import numpy as np
 import pandas as pd
 from scipy.stats import bootstrap
@@ -84,7 +84,7 @@ assert 2.5 < X[:, 0].std() / X[:, 1].std() < 3.2, "text: PV's SD nearly three ti
 # ## The silhouette of a clustering
 #
 # A clustering is good when each point is closer to the points of its own cluster than to those of
-# any other. The silhouette (Rousseeuw 1987) measures this per point: with $a_i$ the mean distance of
+# any other. The silhouette [@rousseeuw1987] measures this per point: with $a_i$ the mean distance of
 # trial $i$ to the other members of its cluster and $b_i$ the smallest mean distance to the members of
 # another cluster,
 #
@@ -94,7 +94,7 @@ assert 2.5 < X[:, 0].std() / X[:, 1].std() < 3.2, "text: PV's SD nearly three ti
 #
 # $s_i$ near 1 means a trial well inside its cluster, near 0 a trial on the border between two,
 # below 0 a trial closer to another cluster than to its own. The *average silhouette* summarises a
-# whole clustering. As the paper did with scikit-learn, we fit K-means for every $k$ from 2 to 16
+# whole clustering. As the paper did with scikit-learn [@pedregosa2011], we fit K-means for every $k$ from 2 to 16
 # and compute the silhouettes [](#eq-silhouette) of each ([](#fig-silhouette-sweep)).
 
 # %%
@@ -108,8 +108,8 @@ print(sweep.table().round(3).T)
 # ## Which k are valid
 #
 # The paper says that silhouette analysis "reveals that $2 \le$ n clusters $\le 16$ produces valid
-# clusters" without saying by what rule. `skilllib.prototypes.is_valid` uses the reading of
-# scikit-learn's silhouette example, which the paper cites: a clustering is **valid** when its average
+# clusters" without saying by what rule. [`skilllib.prototypes.is_valid`](#skilllib.prototypes.is_valid) uses the reading of
+# scikit-learn's silhouette example, which the paper cites [@sklearnsilhouette]: a clustering is **valid** when its average
 # silhouette is positive and **every cluster has at least one trial whose silhouette exceeds the
 # average**. A cluster that lies wholly below the average line is one that the partition does not
 # support: its trials are, on the whole, no better placed than the typical trial. (The example also
@@ -214,7 +214,7 @@ assert (gaps["sparc"] > 0).all() and round(X[:, 1].std(), 2) == 0.09, "text: SPA
 # A centre is an average, not a movement. The prototype of a cluster is the real trial nearest its
 # centre (Euclidean distance in the clustering plane), and its speed profile from movement onset to
 # contact is what the robot will be given ([](#fig-prototypes), the paper's Figure 2b).
-# `skilllib.features.segment` returns that part of a trial. The table adds each prototype's duration,
+# [`skilllib.features.segment`](#skilllib.features.segment) returns that part of a trial. The table adds each prototype's duration,
 # its contact speed and its distance from the centre: a prototype stands for its cluster only as well
 # as it lies near the centre, and a small, scattered cluster can have its centre where no trial is.
 # Here every prototype lies within 0.03 of its centre in the (PV, SPARC) plane. One of them, the slowest
@@ -278,7 +278,7 @@ comparison
 #
 # The paper computes SPARC "within the frequency range 0 to 20 Hz"; the SPARC authors' Python code
 # defaults to 10 Hz. Chapter 1 chose 20 Hz because on segments as short as these the 10 Hz cap ends most
-# bands itself. What does the choice change downstream? `skilllib.sensitivity.sparc_sensitivity` runs this
+# bands itself. What does the choice change downstream? [`skilllib.sensitivity.sparc_sensitivity`](#skilllib.sensitivity.sparc_sensitivity) runs this
 # chapter's whole procedure (features, selection, silhouette sweep, K-means with $k = 6$, prototypes)
 # once per setting and compares each with the first; the pipeline offers the same as
 # `python -m skilllib run --sensitivity fc=10`. The selection uses the contact speed only, so both
@@ -364,7 +364,7 @@ assert var[0] / var.sum() > 0.85, "text: in m/s PV already carries most of the v
 assert adjusted_rand_score(in_cm.labels, pv_only.labels) == 1.0, "text: in cm/s, the partition of PV alone"
 
 # %% [markdown]
-# The adjusted Rand index (ARI; Hubert & Arabie 1985) compares two partitions of the same trials: 1
+# The adjusted Rand index (ARI) [@hubert1985] compares two partitions of the same trials: 1
 # when they are the same up to the numbering of the clusters, about 0 when they agree no more than
 # chance. The usual remedy is to standardise each feature to zero mean and unit standard deviation
 # before clustering (`scaling="standard"`), which gives both features the same weight whatever their
@@ -436,7 +436,7 @@ assert own, "text: each partition scores higher with its own ruler"
 # K-means finds a local minimum of its objective, the within-cluster sum of squares (*inertia*), from
 # a random start (k-means++ seeding). scikit-learn runs it `n_init` times and keeps the run with the
 # lowest inertia. The paper does not say how many; the book uses `n_init = 10`, scikit-learn's default
-# when the paper was written. `seed_stability` refits with ten other seeds and compares each partition
+# when the paper was written. [`seed_stability`](#skilllib.prototypes.seed_stability) refits with ten other seeds and compares each partition
 # with the reference (seed 0, same `n_init`) by ARI: with a single start, with the book's ten, and with
 # a hundred.
 
@@ -515,7 +515,7 @@ assert exact["standardised"] < exact["raw"] and ari_std_100.min() < 0.95, "text:
 # %% [markdown]
 # ## Choice 3: stability under resampling
 #
-# The seed is one source of variation; the sample of trials is another. `bootstrap_stability` draws
+# The seed is one source of variation; the sample of trials is another. [`bootstrap_stability`](#skilllib.prototypes.bootstrap_stability) draws
 # the trials with replacement, refits the whole procedure (scaling included), assigns every original
 # trial to the nearest refitted centre and compares that partition with the full-data one by ARI. We
 # use 100 resamples per scaling; both scalings see the same resamples (the same `random_state`), so
@@ -649,7 +649,7 @@ plot_clusters(ward);
 # hand velocity, so the fastest prototype demands the fastest joints and decides whether the arm can
 # follow at the human's pace. With more clusters the fastest cluster tends to hold fewer, more extreme
 # trials. For $k$ = 4, 6 and 8 the table gives the PV range the prototypes span and the Simple6 joint
-# velocities of the fastest prototype, computed by `skilllib.transfer.transfer` at the paper's pose
+# velocities of the fastest prototype, computed by [`skilllib.transfer.transfer`](#skilllib.transfer.transfer) at the paper's pose
 # (chapter 4 explains the transfer), against the book's limit of $\pi$ rad/s per joint.
 
 # %%
@@ -695,7 +695,7 @@ assert by_k["smallest cluster"].is_monotonic_decreasing, "text: the smallest clu
 #
 # Chapter 2 showed that on these segments SPARC follows how abruptly the contact ends a trial (the
 # contact ratio, contact speed over PV) and the segment's length more than the generator's corrective
-# submovements. Does that shape the clusters? `skilllib.duration.adjusted_sparc` removes from SPARC the
+# submovements. Does that shape the clusters? [`skilllib.duration.adjusted_sparc`](#skilllib.duration.adjusted_sparc) removes from SPARC the
 # part that a linear fit on log duration and contact ratio predicts across the selected trials, keeping
 # its mean and scale; clustering (PV, adjusted SPARC) asks which partition remains once the two are held
 # fixed.
@@ -748,7 +748,7 @@ print(f"participants whose trials fall in at most 2 clusters: {spread_p.index[sp
 # nothing about who made a trial and 1 when each participant is a cluster. With ten participants and six
 # clusters of unequal sizes even unrelated labels give a small positive NMI, so it is compared with a
 # permutation baseline: the participant labels shuffled across the same trials 999 times
-# (`skilllib.participants.participant_dependence`). The share of PV's and SPARC's variance that lies
+# ([`skilllib.participants.participant_dependence`](#skilllib.participants.participant_dependence)). The share of PV's and SPARC's variance that lies
 # between the participants' means says how much of each feature is a property of the person.
 
 # %%
@@ -797,8 +797,8 @@ assert share.is_monotonic_increasing and share.iloc[0] < 0.35 and share.iloc[-1]
 
 # %% [markdown]
 # Partly, and only through speed. The share of corrected trials rises from about a quarter in the
-# slowest cluster to about nine in ten in the two fastest, because in the generator (as in people, Meyer
-# et al. 1988) fast primary movements miss more often and are corrected more often. But the clusters
+# slowest cluster to about nine in ten in the two fastest, because in the generator [as in people,
+# @meyer1988] fast primary movements miss more often and are corrected more often. But the clusters
 # carry less than half as much information about the strategy as about the person, and within a speed
 # band corrected and uncorrected trials mix. **On this data the "motor strategies" reading does not
 # hold:** the six clusters are speed bands, strongly tied to who made the trial, and they separate the

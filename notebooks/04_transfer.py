@@ -10,9 +10,9 @@
 #       format_version: '1.3'
 #       jupytext_version: 1.19.6
 #   kernelspec:
-#     display_name: Python 3 (ipykernel)
+#     display_name: Smoothness-based prototypes (skilllib)
 #     language: python
-#     name: python3
+#     name: skilllib
 # ---
 
 # %% [markdown]
@@ -35,7 +35,7 @@
 # below is computed from it, so the prototypes and their joint velocities are not those of the paper.
 # ```
 
-# %%
+# %% tags=["hide-input"]
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
@@ -93,7 +93,7 @@ assert round(protos["descent"].min(), 2) == 0.08 and round(protos["descent"].max
 # ## End-effector control
 #
 # Robot motion can be commanded at four levels: symbolic, end effector, joints, or forces and torques
-# (Spiers et al. 2016, cited by the paper). The demonstrations are recorded in Cartesian space, the
+# [@spiers2016, cited by the paper]. The demonstrations are recorded in Cartesian space, the
 # hand (here, the spoon held in it) is the human's end effector, and the task is stated there too:
 # touch the box at 0.5 m/s. The paper therefore transfers the skill at the end-effector level: the
 # robot's tool should follow the hand's velocity $v(t)$, sample by sample. The speed profile, and
@@ -104,7 +104,7 @@ assert round(protos["descent"].min(), 2) == 0.08 and round(protos["descent"].max
 # ## The manipulator Jacobian
 #
 # For an arm with joint angles $q \in \mathbb{R}^n$ the tool's spatial velocity, translational and
-# rotational, in the world (base) frame is linear in the joint velocities (Corke 2017, sec. 8.1):
+# rotational, in the world (base) frame is linear in the joint velocities [@corke2017, sec. 8.1]:
 #
 # $$
 # v = \begin{pmatrix} v_x & v_y & v_z & \omega_x & \omega_y & \omega_z \end{pmatrix}^\top = J(q)\, \dot q ,
@@ -139,7 +139,7 @@ pd.DataFrame(J, index=["vx", "vy", "vz", "wx", "wy", "wz"],
 # ## The four steps
 #
 # The paper computes the joint velocities of a prototype in four steps (Sec. 4), at every sample $k$
-# of its trajectory. `skilllib.transfer.transfer` does exactly these, on any roboticstoolbox arm:
+# of its trajectory. [`skilllib.transfer.transfer`](#skilllib.transfer.transfer) does exactly these, on any roboticstoolbox arm:
 #
 # 1. **Inverse kinematics**: a configuration $q_k$ whose tool point is at the hand position $p_k$.
 #    The tool orientation is held at that of the start pose (the recordings hold positions only, so
@@ -220,7 +220,7 @@ robot_figure(figures.plot_frame_mapping, simple6, r_fast)
 #
 # The paper's arm is *Simple6* from the MATLAB Robotics Toolbox (release 10): two 1 m links and a
 # spherical wrist whose three axes meet at the tool point. The Python toolbox does not ship it, so
-# `skilllib.robots.simple6` builds it from its Denavit-Hartenberg table. [](#fig-simple6) redraws the
+# [`skilllib.robots.simple6`](#skilllib.robots.simple6) builds it from its Denavit-Hartenberg table. [](#fig-simple6) redraws the
 # paper's Fig. 3: the joint labels and the default "dexterous" pose
 # $q = (0, -60, 120, 90, -90, 30)$ deg, where the tool point is at (1, 0, 0) m.
 
@@ -762,7 +762,7 @@ assert np.ptp(moved["(a) SPARC, fc/s"]) > 2 * np.ptp(moved["PV/s (m/s)"]), \
 # ## Beyond Simple6: UR5, Puma 560 and Panda
 #
 # Simple6 is a textbook arm. The same transfer runs on any roboticstoolbox arm;
-# `skilllib.robots.get_robot` supplies three real ones, each with a start pose that is inside its joint
+# [`skilllib.robots.get_robot`](#skilllib.robots.get_robot) supplies three real ones, each with a start pose that is inside its joint
 # limits, reaches the whole descent and is well conditioned ([](#fig-start-poses)), and with its joint
 # velocity limits:
 #
@@ -775,8 +775,8 @@ assert np.ptp(moved["(a) SPARC, fc/s"]) > 2 * np.ptp(moved["PV/s (m/s)"]), \
 #   `qr`, tool pointing (almost) down. With seven joints $J$ is
 #   $6 \times 7$, not square, and has no inverse. The arm is redundant: infinitely many joint
 #   velocities give the same tool velocity. The transfer takes the one of least norm, the
-#   pseudo-inverse solution $\dot q = J^{+} v$ with $J^{+} = J^\top (J J^\top)^{-1}$ (Corke 2017,
-#   sec. 8.4.2), and reports Yoshikawa's manipulability $\sqrt{\det(J J^\top)}$ in place of $\det J$.
+#   pseudo-inverse solution $\dot q = J^{+} v$ with $J^{+} = J^\top (J J^\top)^{-1}$ [@corke2017,
+#   sec. 8.4.2], and reports Yoshikawa's manipulability $\sqrt{\det(J J^\top)}$ in place of $\det J$.
 
 # %%
 arms = ["simple6", "ur5", "puma560", "panda"]

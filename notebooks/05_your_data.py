@@ -10,9 +10,9 @@
 #       format_version: '1.3'
 #       jupytext_version: 1.19.6
 #   kernelspec:
-#     display_name: Python 3 (ipykernel)
+#     display_name: Smoothness-based prototypes (skilllib)
 #     language: python
-#     name: python3
+#     name: skilllib
 # ---
 
 # %% [markdown]
@@ -31,7 +31,7 @@
 # the pipeline does with each. With your own file, replace its path.
 # ```
 
-# %%
+# %% tags=["hide-input"]
 import json
 import shutil
 import subprocess
@@ -170,7 +170,7 @@ assert 0 < (dn != 0).sum() <= 4 and d_sparc[dn != 0].max() > 0.05, "text: 'in a 
 # and game engines stamp each sample with its frame time, which jitters by a few milliseconds, and now
 # and then drop a frame. A trial whose intervals deviate from the file's by more than the jitter
 # tolerance is **resampled** onto a uniform grid at the file's rate (cubic splines through the positions,
-# the approach and the samples in contact separately; `skilllib.timing`), and `results.json` says so for
+# the approach and the samples in contact separately; [`skilllib.timing`](#skilllib.timing)), and `results.json` says so for
 # that trial (`resampled`). A gap longer than the limit below cannot be bridged honestly: that trial is
 # `invalid`, with the gap and its line. The constants, from `skilllib.timing`:
 
@@ -252,8 +252,8 @@ assert 0 < 1 - cs.loc[1000] / cs.loc[60] < 0.1, "text: 'by less than a tenth fro
 # The Phantom resolves 0.03 mm. Optical motion capture has 0.1–0.5 mm of position noise, consumer VR
 # trackers 0.5–1 mm, and their logs jitter. Differentiated, such noise crosses the onset threshold at
 # rest, and the trial is lost. Biomechanics low-pass filters positions before differentiating them, and
-# so does skilllib (`--lowpass`, `skilllib.filtering`): a Butterworth filter run forwards and backwards
-# (no lag), its cut-off chosen by Winter's residual analysis. The default, `auto`, filters only when the
+# so does skilllib (`--lowpass`, [`skilllib.filtering`](#skilllib.filtering)): a Butterworth filter run
+# forwards and backwards (no lag), its cut-off chosen by Winter's residual analysis [@winter2009]. The default, `auto`, filters only when the
 # noise measured at the start of the trials (where the hand rests) would give more than 5 mm/s of speed
 # noise; the book's cohort and the files above stay unfiltered. `--lowpass HZ` sets the cut-off (the
 # -3 dB point of the whole forward-backward filter), `--lowpass none` switches it off.
@@ -647,7 +647,7 @@ assert (others < 0.5 * peaks_s6[:, [1, 5]].min(axis=1)).all(), (
 # ## Another robot, other limits
 #
 # `--robot` chooses the arm and its start pose; each comes with default joint velocity limits
-# (justified in `skilllib.robots`):
+# (justified in [`skilllib.robots`](#skilllib.robots)):
 
 # %%
 rows = []

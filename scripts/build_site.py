@@ -1,6 +1,7 @@
 """Build the book's static site into _build/html, with no network.
 
-    .venv/bin/python scripts/build_site.py                # execute every chapter, then render
+    .venv/bin/python scripts/build_site.py                # execute the chapters whose code changed, render
+    .venv/bin/python scripts/build_site.py --no-cache     # execute every chapter again
     .venv/bin/python scripts/build_site.py --no-execute   # reuse the chapters executed last time
     .venv/bin/python scripts/build_site.py --executed DIR # take the chapters executed elsewhere (make test:
                                                           # nbmake --overwrite on copies in DIR)
@@ -10,14 +11,22 @@ Steps:
    may refer to into _build/site-src/. Each notebook of the toc is executed there with nbclient (kernel
    python3, cwd = the notebook's own folder, so `../data/...` works); the committed notebooks are
    only read. Chapter k of the toc (the landing page is not counted) numbers its figures, tables and
-   equations k.1, k.2, ... unless it sets `numbering` itself.
-2. Render: `myst build --html` in the staging folder; myst runs theme/render.mjs (theme/template.yml).
+   equations k.1, k.2, ... unless it sets `numbering` itself. A notebook paired with a percent script
+   (NN_slug.py beside it) offers both for download.
+   Executed notebooks are cached in BUILD_DIR/cache/, keyed on the chapter's code cells, the kernel
+   settings and every file of CACHE_INPUTS (skilllib/, data/, images/, environment.txt, pyproject.toml):
+   an edit of the prose only re-executes nothing. Pages in GENERATED_PAGES (api.md: the API reference,
+   scripts/api_page.py) are written into the staging folder, cached on the package's sources.
+2. Render: `myst build --html` in the staging folder; myst runs theme/render.mjs (theme/template.yml)
+   with BOOK_VERSION, BOOK_COMMIT and BOOK_BUILD_DATE for the page footer.
 3. Copy the result to _build/html and check that every toc entry has its page.
 A failing cell or page stops the build with a non-zero exit and a message naming it.
 """
 from __future__ import annotations
 
 import argparse
+import datetime
+import hashlib
 import json
 import os
 import re
@@ -37,6 +46,17 @@ ROOT = Path(__file__).resolve().parents[1]
 SKIP_DIRS = {".git", ".venv", "_build", "node_modules", "theme", "tests", "__pycache__", ".pytest_cache",
              ".hypothesis", ".ipynb_checkpoints", ".benchmarks", ".ci", "out", "results", "skilllib.egg-info", "_executed", "mutants"}
 ANSI = re.compile(r"\x1b\[[0-9;?]*[A-Za-z]")
+# What an executed chapter's outputs depend on besides its code cells (paths relative to the project;
+# missing ones are skipped). A change to any of them executes the chapters again.
+CACHE_INPUTS = ("skilllib", "data", "images", "environment.txt", "pyproject.toml")
+# The kernel of the site build: figures inline as retina PNGs; MPLBACKEND=Agg in its environment so that
+# a subprocess a chapter starts (python -m skilllib run) does not print `Figure(650x600)` for each figure.
+KERNEL_ARGS = ["--matplotlib=inline", "--InlineBackend.figure_formats=retina"]
+# myst only warns about these; the build stops on them.
+FATAL_MYST = re.compile(r"Could not link citation|Error reading file|No target for internal reference|"
+                        r"Duplicate identifier")
+# Toc entries written at build time: file -> package whose API reference it is (scripts/api_page.py).
+GENERATED_PAGES = {"api.md": "skilllib"}
 
 
 class BuildError(Exception):
@@ -65,7 +85,7 @@ def read_config(project: Path) -> tuple[dict, list[str]]:
     files = toc_files((cfg.get("project") or {}).get("toc"))
     if not files:
         raise BuildError("myst.yml has no project.toc with files")
-    missing = [f for f in files if not (project / f).is_file()]
+    missing = [f for f in files if not (project / f).is_file() and f not in GENERATED_PAGES]
     if missing:
         raise BuildError("myst.yml lists pages that do not exist: " + ", ".join(missing))
     if not (cfg.get("site") or {}).get("template"):
@@ -126,8 +146,7 @@ def execute_notebook(src: Path, rel: str, timeout: int):
     tmp = Path(tempfile.mkdtemp(prefix="book-kernel-"))
     km = KernelManager(kernel_name="python3", transport="ipc", connection_file=str(tmp / "kernel.json"))
     # Retina PNGs: twice the pixels, shown at the figure's size (the theme reads the width metadata).
-    client = NotebookClient(nb, km=km, timeout=timeout, kernel_name="python3",
-                            extra_arguments=["--InlineBackend.figure_formats=retina"],
+    client = NotebookClient(nb, km=km, timeout=timeout, kernel_name="python3", extra_arguments=KERNEL_ARGS,
                             resources={"metadata": {"path": str(src.parent)}})
     try:
         run_cells(client, nb, rel, timeout)
@@ -152,10 +171,7 @@ def executed_elsewhere(src: Path, rel: str, folder: Path):
     for i, cell in enumerate(c for c in ran.cells if c.cell_type == "code"):
         if cell.get("execution_count") is None or any(o.get("output_type") == "error" for o in cell.outputs):
             raise BuildError(f"{rel}: code cell {i + 1} of {done} did not run, or raised an error")
-    for mine, theirs in zip((c for c in nb.cells if c.cell_type == "code"),
-                            (c for c in ran.cells if c.cell_type == "code")):
-        mine.outputs, mine.execution_count = theirs.outputs, theirs.execution_count
-    return nb  # the chapter's own markdown cells and metadata, the other runner's outputs
+    return with_outputs_of(nb, ran)  # the chapter's own markdown cells and metadata, the other runner's outputs
 
 
 def run_cells(client, nb, rel: str, timeout: int) -> None:
@@ -183,15 +199,163 @@ def run_cells(client, nb, rel: str, timeout: int) -> None:
 
 
 def kernel_environment() -> None:
-    """Environment the kernels inherit: the venv first on PATH and inline figures.
+    """Environment the kernels inherit: the venv first on PATH, and MPLBACKEND=Agg.
 
-    MPLBACKEND=Agg (set by the Makefile for tests) would stop matplotlib from showing figures,
-    so the site would have none: the kernels get the inline backend instead.
+    The kernel itself shows figures inline (KERNEL_ARGS: --matplotlib=inline); MPLBACKEND is what the
+    processes a chapter starts inherit. With the inline backend there (ipykernel's default), a
+    `python -m skilllib run` would print `Figure(650x600)` for every figure roboticstoolbox shows.
     """
     bin_dir = str(Path(sys.executable).parent)
     os.environ["PATH"] = bin_dir + os.pathsep + os.environ.get("PATH", "")
-    os.environ["MPLBACKEND"] = "module://matplotlib_inline.backend_inline"
+    os.environ["MPLBACKEND"] = "Agg"
     os.environ.setdefault("PYDEVD_DISABLE_FILE_VALIDATION", "1")
+
+
+# ------------------------------------------------------------------------------ the execution cache --
+
+def _file_digest(path: Path) -> str:
+    h = hashlib.sha256()
+    with path.open("rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def inputs_digest(project: Path, names=CACHE_INPUTS) -> str:
+    """One digest of every file under `names` (relative to project), by path and content."""
+    h = hashlib.sha256()
+    for name in names:
+        root = project / name
+        files = [root] if root.is_file() else sorted(p for p in root.rglob("*") if p.is_file()) if root.is_dir() else []
+        for p in files:
+            if "__pycache__" in p.parts or p.suffix == ".pyc":
+                continue
+            h.update(f"{p.relative_to(project).as_posix()}\0{_file_digest(p)}\0".encode())
+    return h.hexdigest()
+
+
+def cache_key(nb, inputs: str) -> str:
+    """The key of a notebook's executed outputs: its code cells (in order), the kernel settings, the
+    Python version and the digest of CACHE_INPUTS. Markdown cells, tags and metadata are not in it."""
+    h = hashlib.sha256()
+    h.update(f"{sys.version}\0{' '.join(KERNEL_ARGS)}\0{inputs}\0".encode())
+    for cell in nb.cells:
+        if cell.cell_type == "code":
+            h.update(b"\0code\0" + cell.source.encode())
+    return h.hexdigest()[:24]
+
+
+class ExecutionCache:
+    """Executed notebooks in BUILD_DIR/cache/exec/<name>-<key>.ipynb (one kept per notebook)."""
+
+    def __init__(self, folder: Path, inputs: str):
+        self.folder = folder
+        self.inputs = inputs
+
+    def path(self, rel: str, nb) -> Path:
+        return self.folder / f"{rel.replace('/', '__').removesuffix('.ipynb')}-{cache_key(nb, self.inputs)}.ipynb"
+
+    def get(self, src: Path, rel: str):
+        """The chapter with the cached outputs of its code, or None when its code (or an input) changed."""
+        nb = read_notebook(src, rel)
+        hit = self.path(rel, nb)
+        if not hit.is_file():
+            return None
+        try:
+            return with_outputs_of(nb, nbformat.read(hit, as_version=4))
+        except Exception:  # a damaged cache file or other code under the same key: execute again
+            return None
+
+    def put(self, rel: str, nb) -> None:
+        self.folder.mkdir(parents=True, exist_ok=True)
+        target = self.path(rel, nb)
+        for old in self.folder.glob(f"{rel.replace('/', '__').removesuffix('.ipynb')}-*.ipynb"):
+            if old != target:
+                old.unlink()
+        tmp = target.with_suffix(".tmp")
+        nbformat.write(nb, tmp)
+        tmp.replace(target)
+
+
+def with_outputs_of(nb, ran):
+    """`nb` (the chapter: its markdown, tags and metadata) with the outputs of `ran`'s code cells, which
+    must be the same code; ValueError otherwise."""
+    mine = [c for c in nb.cells if c.cell_type == "code"]
+    theirs = [c for c in ran.cells if c.cell_type == "code"]
+    if [c.source for c in mine] != [c.source for c in theirs]:
+        raise ValueError("other code")
+    for m, t in zip(mine, theirs):
+        m.outputs, m.execution_count = t.outputs, t.execution_count
+    return nb
+
+
+# ------------------------------------------------------------------------------ build information --
+
+def build_info(project: Path) -> dict[str, str]:
+    """Version, commit and date for the footer: version from myst.yml `project: version` or else
+    pyproject.toml; the commit (with "+ local changes" when the work tree differs from it); the date
+    (UTC, or SOURCE_DATE_EPOCH when set, for reproducible builds)."""
+    version = "unversioned"
+    try:
+        cfg = yaml.safe_load((project / "myst.yml").read_text(encoding="utf-8")) or {}
+        version = str((cfg.get("project") or {}).get("version") or "") or version
+    except (OSError, yaml.YAMLError):
+        pass
+    if version == "unversioned" and (project / "pyproject.toml").is_file():
+        import tomllib
+        try:
+            version = tomllib.loads((project / "pyproject.toml").read_text(encoding="utf-8"))["project"]["version"]
+        except (KeyError, tomllib.TOMLDecodeError):
+            pass
+    commit = "not a git checkout"
+    try:
+        rev = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=project, capture_output=True,
+                             text=True, timeout=30)
+        if rev.returncode == 0:
+            commit = rev.stdout.strip()
+            dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=project,
+                                   capture_output=True, text=True, timeout=30)
+            if dirty.returncode == 0 and dirty.stdout.strip():
+                commit += " + local changes"
+    except (OSError, subprocess.TimeoutExpired):
+        pass
+    epoch = os.environ.get("SOURCE_DATE_EPOCH")
+    when = datetime.datetime.fromtimestamp(int(epoch), datetime.timezone.utc) if epoch and epoch.isdigit() \
+        else datetime.datetime.now(datetime.timezone.utc)
+    return {"BOOK_VERSION": version, "BOOK_COMMIT": commit, "BOOK_BUILD_DATE": when.strftime("%Y-%m-%d %H:%M UTC")}
+
+
+# ------------------------------------------------------------------------------ generated pages --
+
+def generate_page(project: Path, rel: str, dst: Path, cache_dir: Path) -> None:
+    """Write the generated page `rel` (GENERATED_PAGES) to dst, from the cache when its package's
+    sources and the generator are unchanged."""
+    package = GENERATED_PAGES[rel]
+    generator = Path(__file__).resolve().parent / "api_page.py"
+    h = hashlib.sha256(f"{sys.version}\0{_file_digest(generator)}\0".encode())
+    h.update(inputs_digest(project, (package,)).encode())
+    cached = cache_dir / f"{Path(rel).stem}-{h.hexdigest()[:24]}.md"
+    if not cached.is_file():
+        t0 = time.perf_counter()
+        proc = subprocess.run([sys.executable, str(generator), "--package", package, "--out", str(cached)],
+                              cwd=project, capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=600)
+        if proc.returncode != 0:
+            cached.unlink(missing_ok=True)
+            raise BuildError(f"{rel} (the API reference of {package}) could not be generated:\n"
+                             + (proc.stderr.strip() or proc.stdout.strip())[-3000:])
+        for old in cache_dir.glob(f"{Path(rel).stem}-*.md"):
+            if old != cached:
+                old.unlink()
+        log(f"generated {rel} from the docstrings of {package} in {time.perf_counter() - t0:.1f} s")
+    dst.parent.mkdir(parents=True, exist_ok=True)
+    shutil.copyfile(cached, dst)
+
+
+def add_downloads(nb, src: Path) -> None:
+    """Offer the chapter's percent script (NN_slug.py beside the notebook) for download as well."""
+    script = src.with_suffix(".py")
+    if script.is_file():
+        nb.metadata["downloads"] = [{"file": script.name, "title": f"Python script {script.name}"}]
 
 
 def find_myst() -> str:
@@ -202,7 +366,7 @@ def find_myst() -> str:
 
 
 def build(project: Path, build_dir: Path, execute: bool, timeout: int, chapter_numbers: bool,
-          executed: Path | None = None) -> Path:
+          executed: Path | None = None, use_cache: bool = True) -> Path:
     t_start = time.perf_counter()
     cfg, files = read_config(project)
     theme = (project / cfg["site"]["template"]).resolve()
@@ -223,16 +387,26 @@ def build(project: Path, build_dir: Path, execute: bool, timeout: int, chapter_n
     (staging / "myst.yml").write_text(yaml.safe_dump(cfg, sort_keys=False, allow_unicode=True), encoding="utf-8")
 
     kernel_environment()
+    cache = ExecutionCache(build_dir / "cache" / "exec", inputs_digest(project)) if (execute or executed) else None
+    reused = []
     for k, rel in enumerate(files):
         src, dst = project / rel, staging / rel
         chapter = k if (chapter_numbers and k > 0) else None
+        if rel in GENERATED_PAGES and not src.is_file():
+            generate_page(project, rel, dst, build_dir / "cache")
+            continue
         if rel.endswith(".ipynb"):
             if executed is not None:
                 nb = executed_elsewhere(src, rel, executed)
+                cache.put(rel, nb)
+            elif execute and use_cache and (hit := cache.get(src, rel)) is not None:
+                nb = hit
+                reused.append(rel)
             elif execute:
                 t0 = time.perf_counter()
                 nb = execute_notebook(src, rel, timeout)
                 log(f"executed {rel} in {time.perf_counter() - t0:.1f} s")
+                cache.put(rel, nb)
             elif dst.exists():
                 nb = read_notebook(dst, rel)
                 if src.stat().st_mtime > dst.stat().st_mtime:
@@ -243,16 +417,19 @@ def build(project: Path, build_dir: Path, execute: bool, timeout: int, chapter_n
             # Jupytext's pairing settings mean nothing to myst (it warns about them) or to a reader who
             # downloads the notebook: the staged copy leaves them out.
             nb.metadata.pop("jupytext", None)
+            add_downloads(nb, src)
             if chapter:
                 number_notebook(nb, chapter)
             dst.parent.mkdir(parents=True, exist_ok=True)
             nbformat.write(nb, dst)
         elif chapter:
             dst.write_text(set_chapter_numbering(src.read_text(encoding="utf-8"), chapter), encoding="utf-8")
+    if reused:
+        log(f"code unchanged, outputs reused from {os.path.relpath(build_dir / 'cache', project)}: {', '.join(reused)}")
     t_exec = time.perf_counter()
 
     # 2. Render with myst and the offline theme. CI=1 and no stdin: myst never prompts.
-    env = dict(os.environ, CI="1", PWD=str(staging))
+    env = dict(os.environ, CI="1", PWD=str(staging), **build_info(project))
     env.pop("BASE_URL", None)
     proc = subprocess.run([find_myst(), "build", "--html"], cwd=staging, env=env, stdin=subprocess.DEVNULL,
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=900)
@@ -265,6 +442,11 @@ def build(project: Path, build_dir: Path, execute: bool, timeout: int, chapter_n
             print(f"  myst | {line}", flush=True)
     if proc.returncode != 0:
         raise BuildError(f"myst build --html failed (exit {proc.returncode}); the messages above name the page")
+    fatal = sorted({ln.strip() for ln in myst_log.splitlines() if FATAL_MYST.search(ln)})
+    if fatal:
+        raise BuildError("myst reported problems the site must not have (a citation without its entry in the "
+                         "bibliography, an unreadable .bib, a cross-reference without target, a duplicate "
+                         "label):\n  " + "\n  ".join(fatal))
     t_myst = time.perf_counter()
 
     # 3. Copy the site out, then 4. check it.
@@ -306,6 +488,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--project", type=Path, default=ROOT, help="folder with myst.yml (default: the repository)")
     ap.add_argument("--build-dir", type=Path, help="default: PROJECT/_build (the site goes to BUILD_DIR/html)")
     ap.add_argument("--no-execute", action="store_true", help="reuse the notebooks executed by the last build")
+    ap.add_argument("--no-cache", action="store_true", help="execute every chapter, even those whose code is unchanged")
     ap.add_argument("--executed", type=Path, metavar="DIR",
                     help="take each chapter's outputs from DIR/<name>.ipynb, executed by another runner")
     ap.add_argument("--timeout", type=int, default=600, help="seconds allowed per cell (default 600)")
@@ -315,7 +498,7 @@ def main(argv: list[str] | None = None) -> int:
     build_dir = (args.build_dir or project / "_build").resolve()
     try:
         out = build(project, build_dir, not args.no_execute, args.timeout, not args.no_chapter_numbers,
-                    args.executed.resolve() if args.executed else None)
+                    args.executed.resolve() if args.executed else None, use_cache=not args.no_cache)
     except BuildError as err:
         print(f"build_site: ERROR: {err}", file=sys.stderr, flush=True)
         return 1

@@ -1,25 +1,31 @@
 """The built site in a real browser: headless Chromium opens pages from file:// (no server).
 
 Checks what only a browser can: KaTeX math is laid out with its local fonts, the search box finds a
-word and links to its page, nothing is requested from the network, and on a phone-sized screen the
-contents collapse behind the menu button. Chromium is driven over the DevTools protocol
-(websocket-client); skipped only when no Chromium is installed (CI installs Debian's).
+word and links to its page, nothing is requested from the network, on a phone-sized screen the
+contents collapse behind the menu button; the outline marks the section in view, copy buttons copy,
+dark mode follows the system and the switch, references preview their targets on hover, and a printed
+page keeps every line of code. Last, chapter 1 in JupyterLab (`make lab`): opened, run, rendered.
+Chromium is driven over the DevTools protocol (websocket-client); skipped only when no Chromium is
+installed (CI installs Debian's).
 """
 from __future__ import annotations
 
+import base64
 import json
 import os
 import re
 import shutil
 import subprocess
+import sys
 import tempfile
 import time
 import urllib.request
 from pathlib import Path
 
+import nbformat
 import pytest
 
-from test_site import SITES, built_site
+from test_site import ROOT, SITE_PARAMS, built_site
 
 websocket = pytest.importorskip("websocket", reason="websocket-client is needed to drive Chromium")
 
@@ -81,7 +87,13 @@ class Browser:
 
     def wait_for(self, expression: str, timeout: float = 15) -> None:
         deadline = time.monotonic() + timeout
-        while not self.eval(f"!!({expression})"):
+        while True:
+            try:
+                if self.eval(f"!!({expression})"):
+                    return
+            except RuntimeError as err:  # the page navigated while the expression ran: ask the new one
+                if "navigated or closed" not in str(err) and "context was destroyed" not in str(err):
+                    raise
             if time.monotonic() > deadline:
                 raise AssertionError(f"timed out waiting for {expression}")
             time.sleep(0.05)
@@ -109,7 +121,7 @@ def browser():
     b.close()
 
 
-@pytest.fixture(scope="module", params=list(SITES))
+@pytest.fixture(scope="module", params=SITE_PARAMS)
 def site(request):
     return built_site(request.param)
 
@@ -177,3 +189,261 @@ def test_phone_width_collapses_the_contents(browser, site):
         assert browser.eval("document.getElementById('nav-toggle').getAttribute('aria-expanded')") == "true"
     finally:
         browser.send("Emulation.clearDeviceMetricsOverride")
+
+
+# ---------------------------------------------------------------- outline, copy, dark mode, previews, print --
+
+def _page_with_most_sections(site):
+    return max(site.pages, key=lambda p: len(p.soup.select("nav#outline a")))
+
+
+def test_outline_is_beside_the_text_and_marks_the_section_in_view(browser, site):
+    page = _page_with_most_sections(site)
+    n = len(page.soup.select("nav#outline a"))
+    if n < 2:
+        pytest.skip(f"no page of the {site.name} site has two sections")
+    browser.send("Emulation.setDeviceMetricsOverride", width=1440, height=900, deviceScaleFactor=1, mobile=False)
+    try:
+        browser.open(page.path)
+        assert browser.eval("document.querySelector('#outline details').open"), "the outline is closed on a wide screen"
+        right_of_text = browser.eval("document.getElementById('outline').getBoundingClientRect().left >= "
+                                     "document.querySelector('main article').getBoundingClientRect().right")
+        assert right_of_text, "the outline is not beside the text"
+        for k in (n - 1, n // 2, 1):
+            browser.eval(f"""(() => {{ const a = document.querySelectorAll('#outline a')[{k}];
+                document.getElementById(decodeURIComponent(a.getAttribute('href').slice(1))).scrollIntoView(); }})()""")
+            browser.wait_for(f"document.querySelectorAll('#outline a')[{k}].classList.contains('active')")
+            assert browser.eval("document.querySelectorAll('#outline a.active').length") == 1
+            assert browser.eval(f"document.querySelectorAll('#outline a')[{k}].getAttribute('aria-current')") == "location"
+    finally:
+        browser.send("Emulation.clearDeviceMetricsOverride")
+
+
+def test_outline_is_collapsed_above_the_text_on_a_phone(browser, site):
+    page = _page_with_most_sections(site)
+    browser.send("Emulation.setDeviceMetricsOverride", width=390, height=844, deviceScaleFactor=2, mobile=True)
+    try:
+        browser.open(page.path)
+        assert browser.eval("document.querySelector('#outline details').open") is False
+        assert browser.eval("document.getElementById('outline').getBoundingClientRect().bottom <= "
+                            "document.querySelector('main h1').getBoundingClientRect().top"), "the outline is not above the text"
+        browser.eval("document.querySelector('#outline summary').click()")
+        assert browser.eval("document.querySelector('#outline details').open") is True
+        assert browser.eval("document.querySelector('#outline a').getBoundingClientRect().height") > 0
+        assert browser.eval("document.documentElement.scrollWidth") <= 390
+    finally:
+        browser.send("Emulation.clearDeviceMetricsOverride")
+
+
+def test_copy_button_copies_its_code(browser, site):
+    page = next(p for p in site.pages if p.soup.select("main button.copy"))
+    browser.open(page.path)
+    for index in (0, -1):
+        code = browser.eval(f"[...document.querySelectorAll('main button.copy')].at({index}).parentNode.querySelector('pre').textContent")
+        browser.eval(f"window.BOOK_LAST_COPY = null; [...document.querySelectorAll('main button.copy')].at({index}).click()")
+        browser.wait_for("window.BOOK_LAST_COPY !== null")
+        assert browser.eval("window.BOOK_LAST_COPY") == code.rstrip("\n")
+        label = browser.eval(f"[...document.querySelectorAll('main button.copy')].at({index}).textContent")
+        assert label in ("Copied", "Press Ctrl+C"), label
+
+
+def _luminance(rgb: str) -> float:
+    r, g, b = (int(x) / 255 for x in re.findall(r"\d+", rgb)[:3])
+    return 0.2126 * r + 0.7152 * g + 0.0722 * b
+
+
+def test_dark_mode_follows_the_system_and_the_switch(browser, site):
+    page = next((p for p in site.pages if p.soup.select("main img")), site.pages[0])
+    bg = "getComputedStyle(document.body).backgroundColor"
+    try:
+        browser.send("Emulation.setEmulatedMedia", features=[{"name": "prefers-color-scheme", "value": "light"}])
+        browser.open(page.path)
+        browser.eval("localStorage.removeItem('book-theme'); delete document.documentElement.dataset.theme")
+        assert _luminance(browser.eval(bg)) > 0.9
+        browser.send("Emulation.setEmulatedMedia", features=[{"name": "prefers-color-scheme", "value": "dark"}])
+        browser.open(page.path)
+        assert _luminance(browser.eval(bg)) < 0.15, "the system's dark setting is not followed"
+        assert _luminance(browser.eval("getComputedStyle(document.body).color")) > 0.7
+        if page.soup.select("main img"):  # figures keep a white card
+            assert _luminance(browser.eval("getComputedStyle(document.querySelector('main img')).backgroundColor")) > 0.95
+        browser.eval("document.getElementById('theme-toggle').click()")  # the reader's choice: light
+        assert _luminance(browser.eval(bg)) > 0.9
+        browser.open(page.path)  # the choice holds on the next page load, before the first paint
+        assert browser.eval("document.documentElement.dataset.theme") == "light" and _luminance(browser.eval(bg)) > 0.9
+        browser.eval("document.getElementById('theme-toggle').click()")
+        assert _luminance(browser.eval(bg)) < 0.15
+    finally:
+        browser.eval("localStorage.removeItem('book-theme')")
+        browser.send("Emulation.setEmulatedMedia", features=[])
+
+
+def _hover(browser, selector: str) -> None:
+    browser.eval(f"document.querySelector({json.dumps(selector)}).scrollIntoView({{block: 'center'}})")
+    x, y = browser.eval(f"""(() => {{ const r = document.querySelector({json.dumps(selector)}).getBoundingClientRect();
+        return [r.left + r.width / 2, r.top + r.height / 2]; }})()""")
+    browser.send("Input.dispatchMouseEvent", type="mouseMoved", x=0, y=0)  # a move onto the link from elsewhere
+    browser.send("Input.dispatchMouseEvent", type="mouseMoved", x=x, y=y)
+
+
+def test_hovering_a_reference_previews_its_target(browser, site):
+    page = next(p for p in site.pages if p.soup.select('main a.xref[data-xref*="#fig-"]'))
+    key = page.soup.select_one('main a.xref[data-xref*="#fig-"]')["data-xref"]
+    caption = site.page(next(p.file for p in site.pages if p.url == key.split("#")[0])).soup.find(
+        id=key.split("#")[1]).find("figcaption").get_text(" ", strip=True)
+    browser.send("Emulation.setDeviceMetricsOverride", width=1440, height=900, deviceScaleFactor=1, mobile=False)
+    try:
+        browser.open(page.path)
+        _hover(browser, f'main a.xref[data-xref="{key}"]')
+        browser.wait_for("document.querySelector('.preview') && document.querySelector('.preview').offsetHeight > 0")
+        assert browser.eval("!!document.querySelector('.preview img')")
+        assert caption[:40].replace("\xa0", " ") in browser.eval("document.querySelector('.preview').textContent.replace(/\\s+/g, ' ')")
+        inside = browser.eval("""(() => { const r = document.querySelector('.preview').getBoundingClientRect();
+            return r.left >= 0 && r.right <= innerWidth; })()""")
+        assert inside, "the preview runs off the screen"
+        browser.send("Input.dispatchMouseEvent", type="mouseMoved", x=2, y=2)
+        browser.wait_for("!document.querySelector('.preview')")
+        cited = next((p for p in site.pages if p.soup.select("main a.cite")), None)
+        if cited is not None:  # a citation previews its reference
+            browser.open(cited.path)
+            label = cited.soup.select_one("main a.cite")["href"].removeprefix("#")
+            entry = cited.soup.find(id=label).get_text(" ", strip=True)
+            _hover(browser, "main a.cite")
+            browser.wait_for("!!document.querySelector('.preview')")
+            assert entry[:30].replace("\xa0", " ") in browser.eval("document.querySelector('.preview').textContent.replace(/\\s+/g, ' ')")
+    finally:
+        browser.send("Emulation.clearDeviceMetricsOverride")
+
+
+def test_print_shows_the_text_only_with_every_line_of_code(browser, site):
+    """Printed (to PDF): no sidebar, search box, outline or buttons, and no code line cut off."""
+    page = max((p for p in site.pages if p.soup.select("main pre.code")),
+               key=lambda p: max(len(ln) for pre in p.soup.select("main pre.code") for ln in pre.get_text().splitlines()))
+    browser.send("Emulation.setDeviceMetricsOverride", width=1280, height=900, deviceScaleFactor=1, mobile=False)
+    browser.open(page.path)
+    try:
+        wide = browser.eval("[...document.querySelectorAll('main pre.code')].some(p => p.scrollWidth > p.clientWidth + 1)")
+        assert wide, f"{page.url}: no code line wider than its box on screen, nothing to check"
+        browser.send("Emulation.setEmulatedMedia", media="print")
+        for sel in ("#sidebar", ".search", "#outline", ".topbar", "nav.prev-next", "button.copy"):
+            shown = browser.eval(f"[...document.querySelectorAll({json.dumps(sel)})].some(e => getComputedStyle(e).display !== 'none')")
+            assert not shown, f"{sel} is printed"
+        cut = browser.eval("""[...document.querySelectorAll('main pre')].filter(p => p.offsetParent)
+            .filter(p => p.scrollWidth > p.clientWidth + 1).map(p => p.textContent.slice(0, 60))""")
+        assert not cut, f"code cut off in print: {cut[:2]}"
+        assert browser.eval("getComputedStyle(document.querySelector('main pre.code')).whiteSpace") == "pre-wrap"
+        pdf = base64.b64decode(browser.send("Page.printToPDF", printBackground=True)["data"])
+        assert pdf.startswith(b"%PDF") and pdf.count(b"/Type /Page") >= 2
+    finally:
+        browser.send("Emulation.setEmulatedMedia", media="")
+        browser.send("Emulation.clearDeviceMetricsOverride")
+
+
+# ---------------------------------------------------------------- chapter 1 in JupyterLab --
+
+LAB_CHAPTER = "notebooks/01_sparc.ipynb"
+
+
+class JupyterLab:
+    """JupyterLab as `make lab` starts it (scripts/lab.py), headless on a free localhost port, serving a
+    copy of chapter 1 (running it must not write outputs into the repository's notebook)."""
+
+    def __init__(self, tmp: Path) -> None:
+        import secrets
+        import socket
+
+        self.tmp = tmp
+        (tmp / "root" / "notebooks").mkdir(parents=True)
+        shutil.copy(ROOT / LAB_CHAPTER, tmp / "root" / LAB_CHAPTER)
+        # every cell in the page (no windowing), so that the whole notebook can be inspected
+        settings = tmp / "settings" / "@jupyterlab" / "notebook-extension"
+        settings.mkdir(parents=True)
+        (settings / "tracker.jupyterlab-settings").write_text(json.dumps({"windowingMode": "none"}))
+        with socket.socket() as s:
+            s.bind(("127.0.0.1", 0))
+            self.port = s.getsockname()[1]
+        self.token = secrets.token_hex(16)
+        cmd = [sys.executable, str(ROOT / "scripts" / "lab.py"), "--root", str(tmp / "root"), "--open", LAB_CHAPTER, "--",
+               "--no-browser", "--ip=127.0.0.1", f"--port={self.port}", "--ServerApp.port_retries=0",
+               f"--IdentityProvider.token={self.token}", "--LabApp.expose_app_in_browser=True",
+               f"--LabApp.user_settings_dir={tmp / 'settings'}", f"--LabApp.workspaces_dir={tmp / 'workspaces'}"]
+        env = {**os.environ, "JUPYTER_RUNTIME_DIR": str(tmp / "runtime"), "JUPYTER_CONFIG_DIR": str(tmp / "config")}
+        self.log = tmp / "lab.log"
+        self.proc = subprocess.Popen(cmd, env=env, stdout=self.log.open("w"), stderr=subprocess.STDOUT,
+                                     stdin=subprocess.DEVNULL, start_new_session=True)
+        deadline = time.monotonic() + 90
+        while True:
+            try:
+                urllib.request.urlopen(f"{self.base}/api/status?token={self.token}", timeout=2)
+                break
+            except OSError:
+                if self.proc.poll() is not None or time.monotonic() > deadline:
+                    self.stop()
+                    raise RuntimeError("JupyterLab did not start:\n" + self.log.read_text()[-2000:])
+                time.sleep(0.2)
+
+    @property
+    def base(self) -> str:
+        return f"http://127.0.0.1:{self.port}"
+
+    def stop(self) -> int | None:
+        if self.proc.poll() is None:
+            self.proc.terminate()  # JupyterLab shuts its kernels down on SIGTERM
+            try:
+                self.proc.wait(timeout=30)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait(timeout=10)
+        return self.proc.returncode
+
+
+NOTEBOOK = "[...jupyterapp.shell.widgets('main')].find(w => w.content && w.content.widgets && w.sessionContext)"
+
+
+@pytest.mark.jupyterlab
+def test_chapter_1_runs_in_jupyterlab_with_myst(browser, tmp_path):
+    """`make lab`'s JupyterLab: chapter 1 opens with the book's kernel, jupyterlab-myst renders its MyST
+    (an equation reference shows its equation's number, an admonition is an admonition), every cell runs
+    without an error and the figures appear. The server is stopped at the end."""
+    lab = JupyterLab(tmp_path)
+    try:
+        browser.send("Emulation.setFocusEmulationEnabled", enabled=True)  # JupyterLab tracks the focused panel
+        browser.send("Emulation.setDeviceMetricsOverride", width=1400, height=1000, deviceScaleFactor=1, mobile=False)
+        browser.send("Page.navigate", url=f"{lab.base}/lab/tree/{LAB_CHAPTER}?token={lab.token}")
+        browser.wait_for(f"window.jupyterapp && {NOTEBOOK} && {NOTEBOOK}.sessionContext.session && "
+                         f"{NOTEBOOK}.sessionContext.session.kernel", timeout=120)
+        kernel = browser.eval(f"(() => {{ const k = {NOTEBOOK}.sessionContext; return [k.session.kernel.name, k.kernelDisplayName]; }})()")
+        assert kernel == ["skilllib", "Smoothness-based prototypes (skilllib)"], kernel
+        # MyST: a reference to an equation reads as the number its equation shows; a note is an admonition
+        chapter = nbformat.read(ROOT / LAB_CHAPTER, as_version=4)
+        n_refs = sum(c.source.count("](#eq-sparc)") for c in chapter.cells if c.cell_type == "markdown")
+        refs_js = """[...document.querySelectorAll('.jp-MarkdownCell a[href="#eq-sparc"]')]
+            .filter(a => !a.closest('#eq-sparc')).map(a => a.textContent.trim())"""
+        browser.wait_for(f"document.getElementById('eq-sparc') && {refs_js}.length >= {n_refs}", timeout=60)
+        number = browser.eval("document.getElementById('eq-sparc').textContent.trim().match(/\\((\\d+)\\)$/)[0]")
+        refs = browser.eval(refs_js)
+        assert refs and all(r == number for r in refs), f"references to eq-sparc read {refs}, the equation shows {number}"
+        assert browser.eval("[...document.querySelectorAll('.jp-MarkdownCell aside')].some(a => /Note/.test(a.textContent))")
+        # run every cell, as a reader stepping through would
+        browser.eval(f"jupyterapp.shell.activateById({NOTEBOOK}.id)")
+        browser.eval("jupyterapp.commands.execute('notebook:run-all-cells')")
+        browser.wait_for(f"""(() => {{ const p = {NOTEBOOK};
+            const code = p.content.widgets.filter(c => c.model.type === 'code');
+            return code.every(c => c.model.executionCount !== null) && p.sessionContext.session.kernel.status === 'idle'; }})()""",
+                         timeout=400)
+        errors = browser.eval(f"""{NOTEBOOK}.content.widgets.filter(c => c.model.type === 'code')
+            .flatMap((c, i) => c.model.outputs.toJSON().filter(o => o.output_type === 'error').map(o => [i + 1, o.ename, o.evalue]))""")
+        assert not errors, f"cells raised errors (code cell, exception, message): {errors}"
+        shown = browser.eval("document.querySelectorAll('.jp-ErrorOutput, [data-mime-type=\"application/vnd.jupyter.error\"]').length")
+        assert shown == 0
+        browser.wait_for("[...document.querySelectorAll('.jp-OutputArea-output img')].some(i => i.naturalWidth > 100)")
+        n_figures = browser.eval("[...document.querySelectorAll('.jp-OutputArea-output img')].filter(i => i.naturalWidth > 100).length")
+        expected = sum(1 for c in chapter.cells if c.cell_type == "code" and "#| label: fig-" in c.source)
+        assert n_figures >= expected > 0, f"{n_figures} figures shown, {expected} figure cells"
+    finally:
+        browser.send("Emulation.clearDeviceMetricsOverride")
+        browser.send("Emulation.setFocusEmulationEnabled", enabled=False)
+        browser.send("Page.navigate", url="about:blank")
+        code = lab.stop()
+    assert code is not None, "the JupyterLab server is still running"
+    with pytest.raises(OSError):
+        urllib.request.urlopen(f"{lab.base}/api/status", timeout=2)

@@ -3,6 +3,8 @@
 Two sites are checked: the book (myst.yml at the repository root, into _build/html) and a small
 fixture project (tests/fixtures/site, into _build/fixture/html) that exercises every element the
 theme renders. Each is rebuilt once per session if it is missing or older than its sources.
+What only a browser can check (the outline marking the section in view, copy, dark mode, previews on
+hover, print layout) is in tests/test_browser.py.
 """
 from __future__ import annotations
 
@@ -14,6 +16,7 @@ import re
 import shutil
 import subprocess
 import sys
+import time
 from dataclasses import dataclass, field
 from html.parser import HTMLParser
 from pathlib import Path
@@ -22,6 +25,7 @@ from urllib.parse import unquote, urlsplit
 import nbformat
 import pytest
 import yaml
+from bs4 import BeautifulSoup
 
 ROOT = Path(__file__).resolve().parents[1]
 BUILD_SCRIPT = ROOT / "scripts" / "build_site.py"
@@ -47,8 +51,9 @@ def toc_files(entries) -> list[str]:
     return out
 
 
-def _newest_source(project: Path, files: list[str]) -> float:
-    paths = [project / "myst.yml", BUILD_SCRIPT, *(project / f for f in files)]
+def _newest_source(project: Path, files: list[str], cfg: dict) -> float:
+    paths = [project / "myst.yml", *(ROOT / "scripts").glob("*.py"), *(project / f for f in files)]
+    paths += [project / b for b in (cfg.get("project") or {}).get("bibliography", [])]
     paths += [p for p in (ROOT / "theme").rglob("*") if "node_modules" not in p.parts and p.is_file()]
     if project == ROOT:  # chapters run skilllib on the data: their outputs change with them
         for folder in ("skilllib", "data", "images"):
@@ -76,12 +81,16 @@ def _build(name: str) -> "Site":
     project, build_dir = SITES[name]
     cfg = yaml.safe_load((project / "myst.yml").read_text(encoding="utf-8"))
     files = toc_files(cfg["project"]["toc"])
-    missing = [f for f in files if not (project / f).exists()]
+    missing = [f for f in files if not (project / f).exists() and f not in _build_module().GENERATED_PAGES]
     if missing:
         raise RuntimeError(f"myst.yml ({name}) lists pages that do not exist: {missing}")
     out = build_dir / "html"
     stamp = out / "_static" / "pages.json"
-    if not stamp.exists() or stamp.stat().st_mtime < _newest_source(project, files):
+    stale = not stamp.exists() or stamp.stat().st_mtime < _newest_source(project, files, cfg)
+    if not stale:  # same sources, but built at another commit: its footer would name that commit
+        built_at = json.loads(stamp.read_text(encoding="utf-8")).get("build", {}).get("commit")
+        stale = built_at != _build_module().build_info(project)["BOOK_COMMIT"]
+    if stale:
         if shutil.which("node") is None:
             raise RuntimeError("node is not installed: the site cannot be built (Node 18+ is required)")
         executed = os.environ.get("BOOK_EXECUTED") if name == "book" else None  # set by `make test`
@@ -136,6 +145,14 @@ class Page:
     def attr_values(self, *names: str) -> list[tuple[str, str, str]]:
         return [(t, n, a[n]) for t, a in self.tags for n in names if n in a]
 
+    @functools.cached_property
+    def soup(self) -> BeautifulSoup:
+        return BeautifulSoup(self.html, "html.parser")
+
+    @functools.cached_property
+    def article(self):
+        return self.soup.select_one("main article.page")
+
 
 @dataclass
 class Site:
@@ -168,7 +185,12 @@ class Site:
         return nbformat.read(self.build_dir / "site-src" / file, as_version=4)
 
 
-@pytest.fixture(scope="module", params=list(SITES))
+# The book's site renders the chapters nbmake executed (`make test`): tests of it are marked `book_site`,
+# so that `make test` can run every other test while nbmake works (see the Makefile).
+SITE_PARAMS = [pytest.param(name, marks=[pytest.mark.book_site] if name == "book" else []) for name in SITES]
+
+
+@pytest.fixture(scope="module", params=SITE_PARAMS)
 def site(request) -> Site:
     return built_site(request.param)
 
@@ -312,7 +334,8 @@ def test_notebook_download_links_resolve(site):
         if not file.endswith(".ipynb"):
             assert not links, f"{page.url}: only notebook pages have a download link"
             continue
-        assert links == [page.download], f"{page.url}: expected one download link to {page.download}"
+        assert links[0] == page.download and len([x for x in links if x.endswith(".ipynb")]) == 1, \
+            f"{page.url}: expected one notebook download, {page.download}, first"
         target = page.path.parent / links[0]
         assert target.is_file() and target.suffix == ".ipynb", f"{page.url}: {links[0]} does not exist"
         nb = nbformat.read(target, as_version=4)
@@ -322,7 +345,7 @@ def test_notebook_download_links_resolve(site):
 
 def test_math_is_rendered_at_build_time(site):
     pages_with_math = [p for p in site.pages if 'class="katex' in p.html]
-    sources = [(site.project / f).read_text(encoding="utf-8") for f in site.files]
+    sources = [(site.project / f).read_text(encoding="utf-8") for f in site.files if (site.project / f).is_file()]
     if any("$" in s or "{math}" in s for s in sources):
         assert pages_with_math, "the sources have math but no page has KaTeX output"
     assert (site.out / "_static" / "katex" / "katex.min.css").is_file()
@@ -337,11 +360,11 @@ def test_fixture_renders_every_element():
     second = site.page("notebooks/02_second.ipynb")
     # numbered equation with its label, and a reference to it
     assert 'id="eq-sparc"' in index.html and 'class="eq-number">(1)' in index.html
-    assert '<a class="xref" href="#eq-sparc">(1)</a>' in index.html
+    assert '<a class="xref" href="#eq-sparc" data-xref="index.html#eq-sparc">(1)</a>' in index.html
     # chapter-numbered figure, referred to from another page
-    assert 'href="demo.html#fig-sine">Figure\u00a01.1</a>' in index.html
-    assert 'href="demo.html#fig-sine">Figure\u00a01.1</a>' in second.html
-    assert 'href="#fig-cos">Figure\u00a02.1</a>' in second.html
+    assert 'href="demo.html#fig-sine" data-xref="demo.html#fig-sine">Figure\u00a01.1</a>' in index.html
+    assert 'href="demo.html#fig-sine" data-xref="demo.html#fig-sine">Figure\u00a01.1</a>' in second.html
+    assert 'href="#fig-cos" data-xref="second.html#fig-cos">Figure\u00a02.1</a>' in second.html
     assert 'id="tbl-speeds"' in index.html and "Table\u00a01:" in index.html
     # admonitions, footnotes, citation and its reference list
     for kind in ("note", "warning", "tip"):
@@ -361,8 +384,14 @@ def test_fixture_renders_every_element():
     # outputs over mystmd's 25,000 characters are shown whole, in a scrolling box when tagged so
     assert "line 2999\n" in second.html and 'class="outputs scroll"' in second.html
     assert "<th>399</th>" in second.html
-    # remove-input hides the code, not the output
+    # remove-input hides the code, not the output; hide-input folds the code; remove-output and
+    # remove-cell leave nothing of what they remove
     assert "input hidden, output shown" in second.html and "print('input hidden" not in second.html
+    folded = demo.soup.select("details.code-hidden")
+    assert len(folded) == 1 and "def helper" in folded[0].get_text() and "helper output shown 42" in demo.html
+    assert "remove_output_marker = 1" in demo.article.get_text()
+    assert "this output is removed" not in "".join(o.get_text() for o in demo.soup.select(".outputs"))
+    assert "a hidden check: remove-cell" not in demo.html
     # highlighted code, internal links made relative
     assert 'class="hljs-keyword"' in demo.html
     assert 'href="index.html">link to the landing page' in second.html
@@ -443,3 +472,381 @@ def test_outputs_executed_elsewhere_are_taken_only_for_the_same_code_run_without
     (done_dir / "01_x.ipynb").unlink()
     with pytest.raises(bs.BuildError, match="no executed copy"):
         bs.executed_elsewhere(src_dir / "01_x.ipynb", "01_x.ipynb", done_dir)
+
+
+# ---------------------------------------------------------------- what readers of MyST books expect --
+
+def _headings(page) -> list[tuple[str, str]]:
+    """(id, text) of the article's h2/h3 headings (the section anchors "#" left out), in order."""
+    out = []
+    for h in page.article.find_all(["h2", "h3"]):
+        if h.get("id"):
+            out.append((h["id"], h.get_text(" ", strip=True).removesuffix("#").strip()))
+    return out
+
+
+def test_outline_lists_the_pages_sections(site):
+    """"On this page": one link per h2/h3 of the article, in order, with the heading's text."""
+    for page in site.pages:
+        headings = _headings(page)
+        nav = page.soup.select_one("nav#outline")
+        if not headings:
+            assert nav is None, f"{page.url}: an outline without sections"
+            continue
+        assert nav is not None and nav.get("aria-label") == "On this page", f"{page.url}: no outline"
+        assert nav.select_one("details > summary").get_text() == "On this page"
+        links = [(a["href"], a.get_text(" ", strip=True)) for a in nav.select("a")]
+        assert links == [(f"#{i}", t) for i, t in headings], f"{page.url}: outline {links[:3]}... != headings {headings[:3]}..."
+        assert not nav.find_parent("main"), "the outline is a column of its own, not inside the text"
+
+
+def test_every_code_block_has_a_copy_button(site):
+    for page in site.pages:
+        pres = page.soup.select("main pre.code")
+        buttons = page.soup.select("main button.copy")
+        assert len(buttons) == len(pres), f"{page.url}: {len(pres)} code blocks, {len(buttons)} copy buttons"
+        for b in buttons:
+            assert b.get("type") == "button" and b.parent.select_one(":scope > pre.code"), f"{page.url}: a copy button without its code"
+
+
+def test_cell_tags_hide_and_remove_what_they_say(site):
+    """remove-cell: neither code nor output on the page; remove-input: no code; remove-output: no output;
+    hide-input: the code folded in a <details>. Checked against the executed notebooks' cells."""
+    for file in [f for f in site.files if f.endswith(".ipynb")]:
+        page = site.page(file)
+        folded = "".join(d.get_text() for d in page.soup.select("details.code-hidden"))
+        shown_outputs = "".join(o.get_text() for o in page.soup.select("main .outputs"))
+        shown_code = [pre.get_text() for pre in page.soup.select("main pre.code")
+                      if not pre.find_parent("details", class_="code-hidden")]
+        for cell in site.executed(file).cells:
+            if cell.cell_type != "code":
+                continue
+            tags = set(cell.metadata.get("tags", []))
+            body = "\n".join(ln for ln in cell.source.splitlines() if not ln.startswith("#|")).strip()
+            if not body:
+                continue
+            in_code = any(body in c for c in shown_code)
+            if tags & {"remove-cell", "remove-input"}:
+                assert not in_code and body not in folded, f"{page.url}: a {sorted(tags)} cell's code is on the page"
+            elif "hide-input" in tags:
+                assert body in folded and not in_code, f"{page.url}: a hide-input cell is not folded"
+            else:
+                assert in_code, f"{page.url}: the code of a visible cell is missing: {body[:60]!r}"
+            texts = [o.get("text", "") for o in cell.get("outputs", []) if o.get("output_type") == "stream"]
+            for t in (t.strip() for t in texts if t.strip() and "\x1b" not in t and "\r" not in t):
+                if tags & {"remove-cell", "remove-output"}:
+                    assert t.splitlines()[0] not in shown_outputs, f"{page.url}: a {sorted(tags)} cell's output is shown"
+                elif "remove-input" not in tags:
+                    assert t.splitlines()[0] in shown_outputs, f"{page.url}: a cell's output is missing"
+
+
+def test_no_stray_object_reprs_in_outputs(site):
+    """No `Figure(650x600)` or `<Figure size ... with 1 Axes>` where a figure should be."""
+    for page in site.pages:
+        for out in page.soup.select("pre.output"):
+            text = out.get_text()
+            assert not re.search(r"^Figure\(\d+x\d+\)$|<Figure size \d+x\d+|<matplotlib\.\w+", text, re.M), \
+                f"{page.url}: stray output {text[:80]!r}"
+
+
+def test_hover_previews_carry_their_targets(site):
+    """Each cross-reference names its target (data-xref="page.html#id"); the page carries a preview of
+    every target: a figure's caption and image, an equation's KaTeX, a section's heading and first text."""
+    by_url = {p.url: p for p in site.pages}
+    kinds = set()
+    for page in site.pages:
+        templates = {t["data-xref"]: t for t in page.soup.select("div#xref-previews > template")}
+        for a in page.soup.select("main a.xref"):
+            key = a["data-xref"]
+            target_url, target_id = key.split("#", 1)
+            target = by_url[target_url].soup.find(id=target_id)
+            assert target is not None, f"{page.url}: {key} has no target"
+            assert key in templates, f"{page.url}: no preview for {key}"
+            preview = templates[key]
+            assert preview.find(id=True) is None, f"{page.url}: the preview of {key} repeats ids"
+            if target.name == "figure":
+                kinds.add("figure")
+                caption = target.find("figcaption").get_text(" ", strip=True)
+                assert caption and caption in preview.get_text(" ", strip=True)
+                assert bool(target.find("img")) == bool(preview.find("img"))
+            elif "math-block" in (target.get("class") or []):
+                kinds.add("equation")
+                assert preview.select_one(".katex") is not None
+            elif target.name in ("h2", "h3", "h4"):
+                kinds.add("section")
+                title = target.get_text(" ", strip=True).removesuffix("#").strip()
+                assert title in preview.get_text(" ", strip=True)
+    assert {"figure", "equation", "section"} <= kinds, f"{site.name}: previews seen only for {kinds}"
+
+
+def _bib_keys(path: Path) -> dict[str, dict]:
+    entries = {}
+    for m in re.finditer(r"@(\w+)\{([^,\s]+),(.*?)\n\}", path.read_text(encoding="utf-8"), re.S):
+        fields = dict(re.findall(r"(\w+)\s*=\s*\{(.*?)\},?\s*$", m.group(3), re.M))
+        entries[m.group(2)] = {"type": m.group(1), **fields}
+    return entries
+
+
+def _markdown_sources(site) -> dict[str, str]:
+    out = {}
+    for f in site.files:
+        path = site.project / f
+        if f.endswith(".ipynb"):
+            nb = nbformat.read(path, as_version=4)
+            out[f] = "\n\n".join(c.source for c in nb.cells if c.cell_type == "markdown")
+        elif path.is_file():
+            out[f] = path.read_text(encoding="utf-8")
+    return out
+
+
+CITE_KEY = re.compile(r"(?<![\w@.`])@([A-Za-z][\w:-]*\w)")
+PLAIN_CITATION = re.compile(r"\b(?!KI\b)[A-Z][A-Za-z-]+(?: et al\.| (?:&|and) [A-Z][A-Za-z-]+)?,? \(?(?:19|20)\d\d\b")
+
+
+def test_citations_link_to_bibliography_entries(site):
+    """Every citation is a link to its entry in the page's reference list, which shows every work the
+    page cites (and only those), each with its DOI link when references.bib has one."""
+    bib = {}
+    for f in site.cfg["project"].get("bibliography", []):
+        bib |= _bib_keys(site.project / f)
+    assert bib, f"{site.name}: myst.yml names no bibliography"
+    cited_anywhere = set()
+    for page in site.pages:
+        cites = page.soup.select("main a.cite")
+        refs = {li["id"].removeprefix("cite-"): li for li in page.soup.select("section.references li[id^=cite-]")}
+        labels = {a["href"].removeprefix("#cite-") for a in cites}
+        assert all(a["href"].startswith("#cite-") for a in cites), page.url
+        assert labels == set(refs), f"{page.url}: cited {sorted(labels)}, listed {sorted(refs)}"
+        assert all(a.get_text(strip=True) for a in cites), f"{page.url}: an empty citation"
+        for label in labels:
+            assert label in bib, f"{page.url}: {label} is not in the bibliography"
+            doi = bib[label].get("doi")
+            if doi:
+                assert refs[label].find("a", href=f"https://doi.org/{doi}"), f"{page.url}: {label}'s DOI is not linked"
+        cited_anywhere |= labels
+    if site.name == "book":
+        assert cited_anywhere == set(bib), f"references.bib lists works no page cites: {sorted(set(bib) - cited_anywhere)}"
+
+
+def test_no_citation_is_left_as_plain_text(site):
+    """The markdown of every page cites with [@key] / @key: no "Author et al. 2015" in the prose (the
+    KI 2020 paper's name is a name, not a citation) and every cited key is in the bibliography."""
+    bib = set()
+    for f in site.cfg["project"].get("bibliography", []):
+        bib |= set(_bib_keys(site.project / f))
+    for file, text in _markdown_sources(site).items():
+        prose = re.sub(r"```.*?```|`[^`]*`|\$\$.*?\$\$|\$[^$]*\$|https?://\S+", " ", text, flags=re.S)
+        found = [m.group(0) for m in PLAIN_CITATION.finditer(prose)]
+        assert not found, f"{file}: plain-text citations {found}: cite with [@key]"
+        for key in CITE_KEY.findall(prose):
+            assert key in bib, f"{file}: @{key} is not in the bibliography"
+
+
+def test_notebook_pages_offer_the_notebook_and_its_script(site):
+    """A chapter paired with a percent script offers both: the executed .ipynb and the .py source."""
+    for file in [f for f in site.files if f.endswith(".ipynb")]:
+        page = site.page(file)
+        links = {a["href"]: a for a in page.soup.select("header.page-header p.download a[download]")}
+        script = (site.project / file).with_suffix(".py")
+        expected = {file} | ({str(Path(file).with_suffix(".py"))} if script.is_file() else set())
+        assert set(links) == expected, f"{page.url}: downloads {sorted(links)} != {sorted(expected)}"
+        if script.is_file():
+            assert (page.path.parent / Path(file).with_suffix(".py")).read_bytes() == script.read_bytes()
+
+
+def test_footer_names_version_commit_and_build_date(site):
+    commit = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=ROOT, capture_output=True, text=True)
+    for page in site.pages:
+        footer = page.soup.select_one("main footer.site-footer")
+        assert footer is not None, f"{page.url}: no footer"
+        text = footer.get_text(" ", strip=True)
+        if commit.returncode == 0:
+            assert commit.stdout.strip() in footer.select_one(".build-commit code").get_text(), f"{page.url}: {text}"
+        assert re.search(r"Built \d{4}-\d\d-\d\d \d\d:\d\d UTC", text), text
+        if site.name == "book":
+            import tomllib
+            version = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["version"]
+            assert f"Version {version}" in text, text
+
+
+def _css_block(css: str, selector: str) -> dict[str, str]:
+    m = re.search(re.escape(selector) + r"\s*\{(.*?)\}", css, re.S)
+    assert m, f"theme.css has no {selector} block"
+    return dict(re.findall(r"(--[\w-]+)\s*:\s*([^;]+);", m.group(1)))
+
+
+def test_dark_mode_redefines_every_colour():
+    """The dark theme (system setting or the switch) sets every colour variable of the light one, to
+    another value, and the same values both ways."""
+    css = (ROOT / "theme" / "static" / "theme.css").read_text(encoding="utf-8")
+    light = {k: v for k, v in _css_block(css, ":root").items() if re.match(r"#|rgb|transparent", v.strip())}
+    by_switch = _css_block(css, ':root[data-theme="dark"]')
+    by_system = _css_block(css, ':root:not([data-theme="light"])')
+    assert by_switch == by_system
+    assert set(light) <= set(by_switch), f"not redefined in dark: {sorted(set(light) - set(by_switch))}"
+    same = [k for k in light if light[k].strip() == by_switch[k].strip() and k not in ("--figure-bg",)]
+    assert not same, f"dark keeps the light values of {same}"
+    assert by_switch["--figure-bg"].strip() == "#ffffff", "figures need their white card in dark mode"
+
+
+# ---------------------------------------------------------------- the API reference --
+
+def _public_api(package: str = "skilllib") -> dict[str, object]:
+    """Every public function and class of every public module, found independently of
+    scripts/api_page.py: module path -> object."""
+    import importlib
+    import inspect
+    import pkgutil
+
+    pkg = importlib.import_module(package)
+    found = {}
+    for info in pkgutil.walk_packages(pkg.__path__, prefix=f"{package}."):
+        if any(part.startswith("_") for part in info.name.split(".")[1:]):
+            continue
+        module = importlib.import_module(info.name)
+        for name, obj in vars(module).items():
+            if not name.startswith("_") and (inspect.isfunction(obj) or inspect.isclass(obj)) \
+                    and obj.__module__ == info.name:
+                found[f"{info.name}.{name}"] = obj
+    return found
+
+
+@pytest.mark.book_site
+def test_api_page_lists_every_public_function_with_its_units():
+    site = built_site("book")
+    page = site.page("api.md")
+    ids = {tag["id"]: tag for tag in page.soup.select("main [id]")}
+    api = _public_api()
+    assert len(api) > 50
+    for dotted in api:
+        html_id = dotted.replace(".", "-").replace("_", "-").lower()
+        heading = ids.get(html_id) or ids.get(f"{html_id}-class")
+        assert heading is not None and heading.name in ("h3",), f"API page: no entry for {dotted}"
+        units = heading.find_next("strong", string="Units:")
+        assert units is not None and units.find_previous(["h3"]) is heading, f"{dotted}: no units line"
+    # the units shown are those the docstring states, for functions whose units are known
+    def units_of(dotted):
+        heading = ids[dotted.replace(".", "-").replace("_", "-").lower()]
+        return [c.get_text() for c in heading.find_next("strong", string="Units:").parent.find_all("code")]
+    assert {"m/s", "Hz"} <= set(units_of("skilllib.smoothness.sparc"))
+    assert "rad/s" in units_of("skilllib.transfer.transfer")
+    assert {"m", "s"} <= set(units_of("skilllib.smoothness.minimum_jerk_speed"))
+    # docstrings rendered, not shown as reST source or as docutils error messages
+    text = page.article.get_text(" ")
+    assert not re.search(r":(func|class|mod|meth|attr|data):`", text), "reST roles left in the API page"
+    assert "System Message" not in text and "problematic" not in page.html
+    assert page.article.select("a.xref"), "the docstrings' :func: references are not links"
+    # the sidebar lists it and the chapters link to it
+    assert any(a.get("href") == "api.html" for a in site.page("index.md").soup.select("nav.toc a"))
+    linked = {a["data-xref"] for p in site.pages if p.file != "api.md" for a in p.soup.select("main a.xref")
+              if a["data-xref"].startswith("api.html#")}
+    assert len(linked) >= 10, f"the chapters link to {len(linked)} API entries"
+
+
+def test_api_page_stops_on_a_docstring_markup_error(tmp_path):
+    """A docstring docutils cannot read stops the page, naming the object and the line."""
+    pkg = tmp_path / "brokenpkg"
+    pkg.mkdir()
+    (pkg / "__init__.py").write_text('"""A package."""\n', encoding="utf-8")
+    (pkg / "mod.py").write_text('def f(x):\n    """Speed |v| in m/s.\n\n    Second line with :func:`g`."""\n'
+                                '    return x\n\n\ndef g():\n    """Fine, in s."""\n', encoding="utf-8")
+    proc = subprocess.run([sys.executable, str(ROOT / "scripts" / "api_page.py"), "--package", "brokenpkg"],
+                          cwd=tmp_path, capture_output=True, text=True, env={**os.environ, "PYTHONPATH": str(tmp_path)})
+    assert proc.returncode == 1
+    assert "brokenpkg.mod.f" in proc.stderr and "docstring line 1" in proc.stderr and "substitution" in proc.stderr
+    (pkg / "mod.py").write_text('def f(x):\n    """Speed ``|v|`` in m/s, see :func:`g`."""\n    return x\n\n\n'
+                                'def g():\n    """Fine, in s."""\n', encoding="utf-8")
+    proc = subprocess.run([sys.executable, str(ROOT / "scripts" / "api_page.py"), "--package", "brokenpkg"],
+                          cwd=tmp_path, capture_output=True, text=True, env={**os.environ, "PYTHONPATH": str(tmp_path)})
+    assert proc.returncode == 0, proc.stderr
+    assert '(brokenpkg.mod.f)=' in proc.stdout and '**Units:** `m/s`' in proc.stdout
+    assert '<a class="reference external" href="#brokenpkg.mod.g"><code>g()</code></a>' in proc.stdout
+
+
+# ---------------------------------------------------------------- the execution cache --
+
+def test_cache_reuses_outputs_when_only_prose_changed(tmp_path):
+    """The cache key is the code cells (in order) and the inputs' digest: a markdown edit or a tag
+    reuses the outputs, a code edit or a changed input (skilllib/, data/, ...) does not."""
+    bs = _build_module()
+    project = tmp_path / "p"
+    (project / "data").mkdir(parents=True)
+    (project / "data" / "x.csv").write_text("1\n", encoding="utf-8")
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [nbformat.v4.new_markdown_cell("# T\n\nProse."), nbformat.v4.new_code_cell("print(1)")]
+    src = project / "n.ipynb"
+    nbformat.write(nb, src)
+    ran = nbformat.from_dict(json.loads(json.dumps(nb)))
+    ran.cells[1].outputs = [nbformat.v4.new_output("stream", name="stdout", text="1\n")]
+    ran.cells[1].execution_count = 1
+    cache = bs.ExecutionCache(tmp_path / "cache", bs.inputs_digest(project))
+    assert cache.get(src, "n.ipynb") is None
+    cache.put("n.ipynb", ran)
+    nb.cells[0].source = "# T\n\nOther prose."
+    nb.cells[1].metadata["tags"] = ["hide-input"]
+    nbformat.write(nb, src)
+    hit = cache.get(src, "n.ipynb")
+    assert hit is not None and hit.cells[0].source.endswith("Other prose.") and hit.cells[1].outputs[0]["text"] == "1\n"
+    assert hit.cells[1].metadata["tags"] == ["hide-input"]
+    nb.cells[1].source = "print(2)"
+    nbformat.write(nb, src)
+    assert cache.get(src, "n.ipynb") is None, "a code edit must execute again"
+    nb.cells[1].source = "print(1)"
+    nbformat.write(nb, src)
+    assert cache.get(src, "n.ipynb") is not None
+    (project / "data" / "x.csv").write_text("2\n", encoding="utf-8")
+    assert bs.ExecutionCache(tmp_path / "cache", bs.inputs_digest(project)).get(src, "n.ipynb") is None, \
+        "a changed data file must execute again"
+    assert len(list((tmp_path / "cache").glob("n-*.ipynb"))) == 1
+
+
+def test_serve_rebuilds_on_save_and_pages_reload(tmp_path):
+    """`make serve`: the site is served, a saved edit is rebuilt and the served page has it; the pages
+    poll the server's build number to reload themselves."""
+    import signal
+    import urllib.request
+
+    built_site("fixture")  # its execution cache makes the builds below render-only
+    project = tmp_path / "site"
+    shutil.copytree(FIXTURE, project)
+    cfg = yaml.safe_load((project / "myst.yml").read_text(encoding="utf-8"))
+    cfg["site"]["template"] = str(ROOT / "theme")
+    (project / "myst.yml").write_text(yaml.safe_dump(cfg, sort_keys=False), encoding="utf-8")
+    if (SITES["fixture"][1] / "cache").is_dir():
+        shutil.copytree(SITES["fixture"][1] / "cache", tmp_path / "build" / "cache")
+    proc = subprocess.Popen([sys.executable, str(ROOT / "scripts" / "serve.py"), "--project", str(project),
+                             "--build-dir", str(tmp_path / "build"), "--port", "0", "--interval", "0.3"],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, stdin=subprocess.DEVNULL)
+    try:
+        lines = []
+        for line in proc.stdout:
+            lines.append(line)
+            m = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+            if m:
+                base = m.group(0)
+                break
+        else:
+            pytest.fail("serve.py did not start: " + "".join(lines))
+
+        def get(path: str) -> str:
+            with urllib.request.urlopen(base + path, timeout=10) as r:
+                return r.read().decode()
+
+        assert json.loads(get("__build")) == {"id": 1, "ok": True}
+        page = get("index.html")
+        assert "fetch('/__build')" in page and "Fixture book" in page
+        index = project / "index.md"
+        index.write_text(index.read_text(encoding="utf-8") + "\nA sentence saved while serving.\n", encoding="utf-8")
+        deadline = time.monotonic() + 120
+        while json.loads(get("__build"))["id"] < 2:
+            assert proc.poll() is None and time.monotonic() < deadline, "no rebuild after the save"
+            time.sleep(0.3)
+        assert "A sentence saved while serving." in get("index.html")
+        assert not (tmp_path / "build" / "html" / "index.html").read_text(encoding="utf-8").count("__build"), \
+            "the reload script belongs to the server, not to the built files"
+    finally:
+        proc.send_signal(signal.SIGINT)
+        try:
+            proc.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            proc.kill()

@@ -11,7 +11,10 @@
 //
 // mystmd has already done the hard parts: numbering, cross-reference resolution, citations, and
 // math (each math node carries KaTeX HTML). This file maps the MyST AST to HTML (hastscript) and
-// adds the page shell.
+// adds the page shell: contents, search, the page's outline ("On this page"), copy buttons on code,
+// hover previews of cross-references (each page carries the previews of the targets it refers to, as
+// <template data-xref="page.html#id">), a light/dark switch, downloads and a footer with the book's
+// version, commit and build date (BOOK_VERSION, BOOK_COMMIT, BOOK_BUILD_DATE from scripts/build_site.py).
 
 import fs from 'node:fs';
 import path from 'node:path';
@@ -132,6 +135,8 @@ class Page {
     this.footnotes = new Map(); // identifier -> footnoteDefinition
     this.unknown = new Set();
     this.figureAlt = null; // caption text while inside a figure
+    this.headings = []; // {depth, id, title (hast)} for the outline
+    this.xrefTargets = new Set(); // "page.html#id" of every cross-reference on the page (for previews)
   }
 
   all(nodes) {
@@ -181,7 +186,9 @@ class Page {
   n_heading(n) {
     const id = this.id(n);
     const depth = Math.min(Math.max(n.depth ?? 2, 2), 6); // h1 is the page title
-    return h(`h${depth}`, { id }, [...this.all(n.children), id ? h('a.anchor', { href: `#${id}`, ariaLabel: 'Link to this section' }, '#') : null].filter(Boolean));
+    const title = this.all(n.children);
+    if (id && depth <= 3) this.headings.push({ depth, id, title: plainText(n).trim() });
+    return h(`h${depth}`, { id }, [...title, id ? h('a.anchor', { href: `#${id}`, ariaLabel: 'Link to this section' }, '#') : null].filter(Boolean));
   }
   n_thematicBreak() { return h('hr'); }
   n_blockquote(n) { return h('blockquote', this.all(n.children)); }
@@ -228,9 +235,12 @@ class Page {
   // --- code, math ----------------------------------------------------------------------------
   n_code(n) {
     if (n.visibility === 'remove') return [];
-    const pre = h('pre', { className: ['code', n.executable ? 'code-input' : null].filter(Boolean), id: n.executable ? undefined : this.id(n) },
+    const pre = h('pre', { className: ['code', n.executable ? 'code-input' : null].filter(Boolean) },
       h('code', { className: n.lang ? [`language-${n.lang}`] : undefined }, highlight(n.value ?? '', n.lang)));
-    const withName = n.filename ? h('div.code-block', [h('div.code-filename', n.filename), pre]) : pre;
+    // Every code block has a copy button (static/site.js copies the <pre>'s text).
+    const box = h('div.code-box', { id: n.executable ? undefined : this.id(n) }, [
+      h('button.copy', { type: 'button', title: 'Copy the code', ariaLabel: 'Copy the code' }, 'Copy'), pre]);
+    const withName = n.filename ? h('div.code-block', [h('div.code-filename', n.filename), box]) : box;
     return n.visibility === 'hide' ? h('details.code-hidden', [h('summary', 'Show code'), withName]) : withName;
   }
   n_inlineCode(n) { return h('code', n.value); }
@@ -271,7 +281,9 @@ class Page {
     const kids = n.children?.length ? this.all(n.children) : [text(n.label ?? n.identifier)];
     if (n.resolved === false) return h('span.xref.unresolved', kids);
     const href = n.remote && n.url ? this.href(`${n.url}#${n.html_id ?? n.identifier}`) : `#${n.html_id ?? n.identifier}`;
-    return h('a.xref', { href }, kids);
+    const target = href.startsWith('#') ? `${this.entry.href}${href}` : href;
+    this.xrefTargets.add(target);
+    return h('a.xref', { href, dataXref: target }, kids);
   }
   n_footnoteReference(n) {
     const num = n.enumerator ?? n.label;
@@ -401,24 +413,40 @@ class Page {
   referenceSection() {
     const cite = this.data.references?.cite;
     if (!cite?.order?.length) return null;
-    return h('section.references', [h('h2', 'References'),
-      h('ul', cite.order.map((label) => h('li', { id: `cite-${label}` }, [raw(cite.data[label]?.html ?? label)])))]);
+    // Alphabetical, as an author-year list reads; each entry links its DOI (mystmd's formatted html).
+    const sortKey = (label) => (cite.data[label]?.html ?? label).replace(/<[^>]*>/g, '').toLowerCase();
+    const labels = [...cite.order].sort((a, b) => sortKey(a).localeCompare(sortKey(b)));
+    return h('section.references', [h('h2#references', 'References'),
+      h('ul', labels.map((label) => h('li', { id: `cite-${label}` }, [raw(cite.data[label]?.html ?? label)])))]);
   }
   render() {
     const fm = this.data.frontmatter ?? {};
     const body = this.all(this.data.mdast?.children);
-    const download = this.site.notebookDownload(this.entry, fm);
+    const downloads = this.site.downloads(this.entry, fm);
+    const references = this.referenceSection();
+    if (references) this.headings.push({ depth: 2, id: 'references', title: 'References' });
     return h('article.page', [
       h('header.page-header', [
         h('h1', [this.entry.chapter ? h('span.chapter-number', `${this.entry.chapter}`) : null, fm.title ?? this.entry.title].filter(Boolean)),
         fm.subtitle ? h('p.subtitle', fm.subtitle) : null,
-        download ? h('p.download', h('a', { href: download.href, download: download.name }, [
-          h('span', { ariaHidden: 'true' }, '⤓ '), `Download ${download.name}`])) : null,
+        downloads.length ? h('p.download', [h('span.download-label', 'Download'),
+          ...downloads.map((d) => h('a', { href: d.href, download: d.name, title: d.title }, [
+            h('span', { ariaHidden: 'true' }, '⤓ '), d.name]))]) : null,
       ].filter(Boolean)),
       ...[body].flat(),
       this.footnoteSection(),
-      this.referenceSection(),
+      references,
     ].filter(Boolean));
+  }
+
+  // "On this page": the page's sections (h2, h3). Wide screens show it beside the text, narrow ones
+  // as a collapsed <details> above it; static/site.js opens it on wide screens and marks the section in view.
+  outline() {
+    if (!this.headings.length) return null;
+    const items = this.headings.map((x) => h('li', { className: [`outline-level-${x.depth}`] },
+      h('a', { href: `#${x.id}` }, x.title)));
+    return h('nav#outline.outline', { ariaLabel: 'On this page' },
+      h('details', [h('summary', 'On this page'), h('ol', items)]));
   }
 }
 
@@ -473,6 +501,73 @@ function searchDocuments(entry, data) {
   return docs;
 }
 
+// ---------------------------------------------------------------- hover previews --------------
+
+// What a cross-reference to an element of a page shows on hover: a figure or table with its caption,
+// an equation, or a section's heading with its first paragraph(s). Keyed "page.html#id".
+const PREVIEW_BLOCKS = new Set(['p', 'ul', 'ol', 'div', 'pre', 'aside', 'figure', 'table', 'dl']);
+function isElement(node, tag) { return node?.type === 'element' && (!tag || node.tagName === tag); }
+function classes(node) { return [node?.properties?.className ?? []].flat(); }
+
+// A copy of a page's element for a preview on another page: no ids (they would repeat), links within
+// its page made to point at that page.
+function previewCopy(node, pageHref) {
+  const copy = structuredClone(node);
+  const walk = (n) => {
+    if (n.properties) {
+      delete n.properties.id;
+      if (typeof n.properties.href === 'string' && n.properties.href.startsWith('#')) n.properties.href = `${pageHref}${n.properties.href}`;
+    }
+    n.children = (n.children ?? []).filter((c) => !(isElement(c) && classes(c).includes('anchor')));
+    n.children.forEach(walk);
+  };
+  walk(copy);
+  return copy;
+}
+
+function collectPreviews(pageHref, tree, into) {
+  const walk = (parent) => {
+    const kids = parent.children ?? [];
+    kids.forEach((node, i) => {
+      if (!isElement(node)) return;
+      const id = node.properties?.id;
+      if (id) {
+        const key = `${pageHref}#${id}`;
+        if (/^h[2-6]$/.test(node.tagName)) {
+          // the heading and what follows it up to ~600 characters of text or the next heading
+          const parts = [previewCopy(node, pageHref)];
+          let chars = 0;
+          for (const next of kids.slice(i + 1)) {
+            if (!isElement(next)) continue;
+            if (/^h[1-6]$/.test(next.tagName) || chars > 400 || parts.length > 3) break;
+            if (!PREVIEW_BLOCKS.has(next.tagName)) continue;
+            parts.push(previewCopy(next, pageHref));
+            chars += JSON.stringify(next).length > 4000 ? 600 : plainHast(next).length;
+          }
+          into.set(key, parts);
+        } else if (node.tagName === 'figure') {
+          // the image(s) and the caption, not the text the figure's cell printed
+          const fig = previewCopy(node, pageHref);
+          const drop = (n) => { n.children = (n.children ?? []).filter((c) => !(isElement(c, 'pre') && classes(c).includes('output'))); n.children.forEach(drop); };
+          drop(fig);
+          into.set(key, [fig]);
+        } else if (classes(node).includes('math-block')) {
+          into.set(key, [previewCopy(node, pageHref)]);
+        } else if (!into.has(key)) {
+          into.set(key, [previewCopy(node, pageHref)]);
+        }
+      }
+      walk(node);
+    });
+  };
+  walk(tree);
+}
+
+function plainHast(node) {
+  if (node.type === 'text') return node.value;
+  return (node.children ?? []).map(plainHast).join('');
+}
+
 // ---------------------------------------------------------------- the page shell --------------
 
 function tocNav(site, current) {
@@ -486,7 +581,9 @@ function tocNav(site, current) {
   return h('nav.toc', { ariaLabel: 'Contents' }, h('ol', items));
 }
 
-function pageShell(site, entry, article) {
+const HEAD_SCRIPT = "try{var t=localStorage.getItem('book-theme');if(t==='dark'||t==='light')document.documentElement.dataset.theme=t}catch(e){}";
+
+function pageShell(site, entry, article, outline, previewKeys) {
   const i = site.pages.indexOf(entry);
   const prev = site.pages[i - 1];
   const next = site.pages[i + 1];
@@ -502,10 +599,13 @@ function pageShell(site, entry, article) {
       h('head', [
         h('meta', { charset: 'utf-8' }),
         h('meta', { name: 'viewport', content: 'width=device-width, initial-scale=1' }),
+        h('meta', { name: 'color-scheme', content: 'light dark' }),
         h('title', title),
         site.description ? h('meta', { name: 'description', content: site.description }) : null,
         h('link', { rel: 'stylesheet', href: '_static/katex/katex.min.css' }),
         h('link', { rel: 'stylesheet', href: '_static/theme.css' }),
+        // the reader's light/dark choice, before the first paint (no flash of the other theme)
+        h('script', HEAD_SCRIPT),
       ].filter(Boolean)),
       h('body', [
         h('a.skip-link', { href: '#content' }, 'Skip to the text'),
@@ -513,6 +613,8 @@ function pageShell(site, entry, article) {
           h('button#nav-toggle', { type: 'button', ariaControls: 'sidebar', ariaExpanded: 'false' }, [
             h('span.burger', { ariaHidden: 'true' }), h('span.visually-hidden', 'Contents')]),
           h('a.topbar-title', { href: site.pageFiles.get(site.indexSlug) }, site.title),
+          h('button#theme-toggle', { type: 'button', title: 'Switch between light and dark', ariaLabel: 'Switch between light and dark' }, [
+            h('span.theme-icon', { ariaHidden: 'true' })]),
         ]),
         h('div.layout', [
           h('aside#sidebar.sidebar', [
@@ -520,14 +622,23 @@ function pageShell(site, entry, article) {
             search,
             tocNav(site, entry),
           ]),
+          outline,
           h('main#content', [
             article,
             h('nav.prev-next', { ariaLabel: 'Previous and next page' }, [
               prev ? h('a.prev', { href: prev.href, rel: 'prev' }, [h('span.dir', '← Previous'), h('span.t', prev.label)]) : h('span'),
               next ? h('a.next', { href: next.href, rel: 'next' }, [h('span.dir', 'Next →'), h('span.t', next.label)]) : h('span'),
             ]),
+            h('footer.site-footer', [
+              h('span.build-version', ['Version ', h('strong', site.build.version)]),
+              h('span.build-commit', ['Commit ', h('code', site.build.commit)]),
+              h('span.build-date', ['Built ', site.build.date]),
+            ]),
           ]),
-        ]),
+        ].filter(Boolean)),
+        // Previews of the cross-references on this page (static/site.js shows them on hover).
+        previewKeys.length ? h('div#xref-previews', { hidden: true }, previewKeys.map((key) =>
+          h('template', { dataXref: key }, site.previews.get(key)))) : null,
         // Plain scripts with relative src: fetch() of file:// is blocked, <script src> is not.
         h('script', { src: '_static/minisearch.js' }),
         h('script', { src: '_static/search-index.js' }),
@@ -545,6 +656,7 @@ function tocFiles(toc) {
 }
 
 async function main() {
+  const t0 = performance.now();
   const config = await fetchFrom('/config.json');
   if ((config.projects ?? []).length !== 1) fail(`expected one project in config.json, found ${(config.projects ?? []).length}.`);
   const project = config.projects[0];
@@ -598,24 +710,56 @@ async function main() {
       write(`assets/${name}`, content);
       return `assets/${name}`;
     },
-    notebookDownload(entry, fm) {
+    // A notebook page offers the executed notebook and the files of its `downloads` front matter
+    // (scripts/build_site.py adds the paired percent script), next to it as in the repository.
+    downloads(entry, fm) {
+      const out = [];
       const exp = (fm.exports ?? []).find((x) => x.format === 'ipynb' && x.url);
-      if (!exp || !entry.file.endsWith('.ipynb')) return null;
-      const rel = entry.file; // e.g. notebooks/01_sparc.ipynb, as in the repository
-      pendingAssets.set(exp.url, rel);
-      entry.download = rel;
-      return { href: rel, name: path.posix.basename(rel) };
+      if (exp && entry.file.endsWith('.ipynb')) {
+        const rel = entry.file; // e.g. notebooks/01_sparc.ipynb
+        pendingAssets.set(exp.url, rel);
+        entry.download = rel;
+        out.push({ href: rel, name: path.posix.basename(rel), title: 'The notebook, executed' });
+      }
+      for (const d of fm.downloads ?? []) {
+        if (!d.url || d.url === exp?.url) continue;
+        const name = d.filename ?? path.posix.basename(d.url);
+        const rel = path.posix.join(path.posix.dirname(entry.file), name);
+        pendingAssets.set(d.url, rel);
+        out.push({ href: rel, name, title: d.title ?? name });
+      }
+      entry.downloads = out.map((d) => d.href);
+      return out;
     },
+    build: {
+      version: process.env.BOOK_VERSION || 'unversioned',
+      commit: process.env.BOOK_COMMIT || 'unknown',
+      date: process.env.BOOK_BUILD_DATE || new Date().toISOString().slice(0, 16).replace('T', ' ') + ' UTC',
+    },
+    previews: new Map(), // "page.html#id" -> hast nodes (collectPreviews)
   };
 
+  // Two passes: render every article (collecting what cross-references can preview), then write
+  // each page with the previews of the targets it refers to.
   const documents = [];
+  const rendered = [];
   for (const entry of pages) {
     const data = contents.get(entry.slug);
     if (!data) continue;
     try {
       const page = new Page(site, entry, data);
-      write(entry.href, pageShell(site, entry, page.render()));
+      const article = page.render();
+      collectPreviews(entry.href, article, site.previews);
+      rendered.push({ entry, page, article });
       documents.push(...searchDocuments(entry, data));
+    } catch (err) {
+      failures.push(`page "${entry.file || entry.slug}" failed to render: ${err.stack ?? err}`);
+    }
+  }
+  for (const { entry, page, article } of rendered) {
+    try {
+      const keys = [...page.xrefTargets].filter((k) => site.previews.has(k)).sort();
+      write(entry.href, pageShell(site, entry, article, page.outline(), keys));
     } catch (err) {
       failures.push(`page "${entry.file || entry.slug}" failed to render: ${err.stack ?? err}`);
     }
@@ -647,13 +791,14 @@ async function main() {
   }
 
   // The toc as data, for scripts/build_site.py and the tests: toc file -> page, notebook download.
-  write('_static/pages.json', JSON.stringify({ title, pages: pages.map((p) => ({ file: p.file, url: p.href, title: p.title, download: p.download ?? null })) }, null, 1));
+  write('_static/pages.json', JSON.stringify({ title, build: site.build, pages: pages.map((p) => ({
+    file: p.file, url: p.href, title: p.title, download: p.download ?? null, downloads: p.downloads ?? [] })) }, null, 1));
 
   for (const p of pages) {
     if (contents.has(p.slug) && !fs.existsSync(path.join(OUT, p.href))) failures.push(`page "${p.file}": ${p.href} was not written.`);
   }
   if (failures.length) fail(`the site is incomplete:\n  - ${failures.join('\n  - ')}`);
-  process.stdout.write(`theme: wrote ${pages.length} pages, ${pendingAssets.size} files, ${documents.length} search sections to ${OUT}\n`);
+  process.stdout.write(`theme: wrote ${pages.length} pages, ${pendingAssets.size} files, ${documents.length} search sections to ${OUT} in ${((performance.now() - t0) / 1000).toFixed(1)} s\n`);
 }
 
 main().catch((err) => fail(err.stack ?? String(err)));
