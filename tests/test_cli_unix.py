@@ -53,6 +53,7 @@ def _python(*args: str, **kw) -> subprocess.CompletedProcess:
 
 # --- start-up ----------------------------------------------------------------------------------------
 
+@pytest.mark.slow  # a subprocess: left out of mutation testing (it would not see the mutant)
 @pytest.mark.parametrize("argv", [["--help"], ["run", "--help"], ["--version"]])
 def test_help_and_version_import_none_of_the_heavy_libraries(argv):
     """What makes --help take seconds is importing pandas, scikit-learn, roboticstoolbox, matplotlib or
@@ -74,12 +75,14 @@ def test_the_cli_default_k_is_the_papers():
 
 # --- progress bars only on a terminal ----------------------------------------------------------------
 
+@pytest.mark.slow  # a subprocess: left out of mutation testing (it would not see the mutant)
 def test_no_progress_bars_when_stderr_is_not_a_terminal(tmp_path, small_file):
     proc = _python("-m", "skilllib", "run", "--data", str(small_file), "--out", str(tmp_path / "o"), "--no-figures")
     assert proc.returncode == DONE, proc.stderr
     assert proc.stderr == ""  # tqdm would write "features: 100%|..." with carriage returns
 
 
+@pytest.mark.slow  # a subprocess: left out of mutation testing (it would not see the mutant)
 def test_progress_bars_on_a_terminal(tmp_path, small_file):
     """With stderr on a pseudo-terminal the long steps show their bars (and --quiet hides them)."""
     import fcntl
@@ -210,6 +213,7 @@ def test_ctrl_c_at_any_point_is_exit_130_with_one_line(tmp_path, capsys, small_f
     assert not (tmp_path / "o").exists() and not list(tmp_path.glob(".o.partial-*"))
 
 
+@pytest.mark.slow  # a subprocess: left out of mutation testing (it would not see the mutant)
 def test_sigint_to_a_running_command_is_exit_130_without_a_traceback(tmp_path, small_file):
     """SIGINT once the command runs its own code (pandas is imported inside main(): wait until the process
     has mapped it, Linux /proc): exit 130 and one line. The interpreter's own start-up, before skilllib's
@@ -233,6 +237,7 @@ def test_sigint_to_a_running_command_is_exit_130_without_a_traceback(tmp_path, s
     assert not (tmp_path / "o").exists() and not list(tmp_path.glob(".o.partial-*"))
 
 
+@pytest.mark.slow  # a subprocess: left out of mutation testing (it would not see the mutant)
 def test_a_closed_stdout_ends_quietly(tmp_path, small_file):
     """`skilllib run ... | head -0`: the summary cannot be written; no traceback, exit 141 (as SIGPIPE)."""
     proc = subprocess.Popen([sys.executable, "-m", "skilllib", "run", "--data", str(small_file), "--out",

@@ -22,9 +22,9 @@ paper's 0.05 m/s onset threshold at rest. Biomechanics therefore low-pass filter
   differentiated over the pipeline's window, gives a 3-D speed noise (RMS) above
   :data:`SPEED_NOISE_LIMIT` (5 mm/s, a tenth of the onset threshold; the SPARC chapter shows that speed
   noise of 1-3 % of the peak speed leaves SPARC unchanged). The noise is measured where the protocol
-  has the hand at rest, the first :data:`REST_S` of every trial (:func:`rest_noise`: the SD of second
-  differences over sqrt(6), which white noise has and a still or slowly swaying hand has not; the median
-  over trials). Winter's intercept is not used for this decision: a recording without noise but with an
+  has the hand at rest, the first :data:`REST_S` of every trial (:func:`rest_noise`: from the median
+  absolute fourth difference, which white noise has and a still, swaying or even smoothly moving hand
+  has not; the median over trials). Winter's intercept is not used for this decision: a recording without noise but with an
   abrupt start (a kink) has broadband content that his line reads as noise. The book's 60 Hz cohort (0.03 mm, about
   2 mm/s) is therefore not filtered, and its results are those of the paper's procedure. A number
   filters at that cut-off; ``"none"`` never filters.
@@ -55,7 +55,7 @@ START_FIT_S = 0.2  #: s, samples at the start a straight line is fitted to, to e
 END_FIT_S = 0.05  #: s, samples at the end a straight line is fitted to
 N_CUTOFFS = 60  #: cut-offs the residual analysis scans
 REST_S = 0.1  #: s, the start of each trial where the hand rests and the noise is measured
-REST_MIN_SAMPLES = 10  #: samples of that start at least (at low rates)
+REST_MIN_SAMPLES = 16  #: samples of that start at least (at low rates; 0.27 s at 60 Hz)
 LOWPASS_CHOICES = ("auto", "none")
 
 
@@ -131,12 +131,17 @@ def max_cutoff(fs: float, order: int = ORDER) -> float:
 
 
 def rest_noise(approaches: Sequence[np.ndarray], fs: float) -> float:
-    """White position noise (m, RMS per axis) at rest: over the first :data:`REST_S` s of every trial (at
-    least :data:`REST_MIN_SAMPLES`), the root mean square of second differences over samples and axes
-    divided by sqrt(6) (white noise of SD s has second differences of mean 0 and SD s sqrt(6)); the median
-    over trials (robust to trials that do not start at rest). 0 when no trial is long enough."""
+    """White position noise (m, SD per axis) at the start of the trials: over the first :data:`REST_S` s of
+    every trial (at least :data:`REST_MIN_SAMPLES`), the median absolute fourth difference over samples and
+    axes, divided by 0.6745 sqrt(70) (white Gaussian noise of SD s has fourth differences, coefficients
+    1, -4, 6, -4, 1, of SD s sqrt(70), whose median absolute value is 0.6745 times that); the median over
+    trials. Fourth differences of a smooth movement are tiny (its fourth derivative times dt**4), so a
+    recording that starts in motion does not read as noisy, as it would with second differences (its
+    acceleration times dt**2); the median ignores the few differences an abrupt start changes. 0 when no
+    trial is long enough."""
     n = max(REST_MIN_SAMPLES, int(round(REST_S * fs)))
-    est = [float(np.sqrt(np.mean(np.diff(np.asarray(a[:n], dtype=float), 2, axis=0) ** 2) / 6))
+    scale = 0.6745 * np.sqrt(70)
+    est = [float(np.median(np.abs(np.diff(np.asarray(a[:n], dtype=float), 4, axis=0))) / scale)
            for a in approaches if len(a) >= n]
     return float(np.median(est)) if est else 0.0
 

@@ -81,6 +81,17 @@ def _plain(v: Any) -> Any:
     return v
 
 
+def _is_shipped_cohort(given: Any) -> bool:
+    """Whether the run's data are the book's synthetic cohort (its figures say so)."""
+    if given is None:
+        return True
+    return isinstance(given, (str, Path)) and Path(given).resolve() == DEFAULT_DATA.resolve()
+
+
+#: The line every figure of a run on the shipped cohort carries.
+SYNTHETIC_NOTE = "Synthetic data: the book's generated cohort, not the paper's recordings (which are not public)."
+
+
 def _display_path(given: Any) -> str:
     """The data for results.json: the path as given, ``<DataFrame>``, or the shipped cohort's name."""
     if given is None:
@@ -266,8 +277,8 @@ def compute(recordings: Recordings, data: Any, *, setup: RobotSetup, limits: np.
     selected = select(features)
     results: dict[str, Any] = {
         "skilllib_version": __version__,
-        "dataset": {"path": _display_path(data), "n_trials": len(features),
-                    "n_participants": int(features["participant"].nunique()),
+        "dataset": {"path": _display_path(data), "synthetic": _is_shipped_cohort(data),
+                    "n_trials": len(features), "n_participants": int(features["participant"].nunique()),
                     "fs": _plain(float(recordings.fs)), "n_resampled": int(features["resampled"].sum())},
         "sparc_params": {"fc": params["fc"], "amp_th": params["amp_th"], "padlevel": int(params["padlevel"])},
         "filter": lowpass.to_dict(),
@@ -379,6 +390,8 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
     written = []
 
     def keep(fig, name: str) -> None:
+        if run_.results["dataset"]["synthetic"]:
+            fig.text(0.995, 0.003, SYNTHETIC_NOTE, ha="right", va="bottom", fontsize=7, color="0.35")
         written.extend(p.name for p in fg.save(fig, out, name))
         fg.plt.close(fig)
 

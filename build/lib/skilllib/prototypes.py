@@ -172,18 +172,19 @@ class PrototypeResult:
     """Clusters of the (PV, SPARC) tuples and their prototypes, clusters ordered by centre PV.
 
     Attributes:
-        k, method, scaling, random_state, n_init: how the fit was made.
-        data: the input's participant, trial, pv (m/s), sparc and the ``cluster`` label, in input row order
-            (positional index 0..n-1).
-        centres: per cluster (index 0..k-1) ``pv`` (m/s) and ``sparc`` in ORIGINAL units, whatever the scaling.
-        prototypes: per cluster the prototype trial: ``participant``, ``trial``, ``pv``, ``sparc`` and
-            ``row`` (its position in ``data``). K-means and agglomerative: the member nearest the centre
-            (Euclidean, in the clustering space); GMM: the member with the smallest Mahalanobis distance
-            to its component mean (highest component density).
-        sizes: trials per cluster.
-        silhouette: average silhouette (Rousseeuw 1987; ``sklearn.metrics.silhouette_score``), Euclidean,
-            in the clustering space.
-        silhouette_samples: the per-trial silhouettes, input row order.
+
+    :k, method, scaling, random_state, n_init: how the fit was made.
+    :data: the input's participant, trial, pv (m/s), sparc and the ``cluster`` label, in input row order
+        (positional index 0..n-1).
+    :centres: per cluster (index 0..k-1) ``pv`` (m/s) and ``sparc`` in ORIGINAL units, whatever the scaling.
+    :prototypes: per cluster the prototype trial: ``participant``, ``trial``, ``pv``, ``sparc`` and
+        ``row`` (its position in ``data``). K-means and agglomerative: the member nearest the centre
+        (Euclidean, in the clustering space); GMM: the member with the smallest Mahalanobis distance
+        to its component mean (highest component density).
+    :sizes: trials per cluster.
+    :silhouette: average silhouette (Rousseeuw 1987; ``sklearn.metrics.silhouette_score``), Euclidean,
+        in the clustering space.
+    :silhouette_samples: the per-trial silhouettes, input row order.
     """
 
     k: int

@@ -158,7 +158,7 @@ def sparc_bands(speeds: Sequence[ArrayLike] | np.ndarray, fs: float, fc: float =
 
 def _ldlj(duration: np.ndarray, jerk_cost: np.ndarray) -> np.ndarray:
     """LDLJ = -ln(duration**3 * jerk_cost) with jerk_cost = int (d2v/dt2)**2 dt of v / v_peak: the
-    same as -ln |DLJ|, DLJ = -(duration**3 / v_peak**2) int (d2v/dt2)**2 dt, without underflow."""
+    same as ``-ln |DLJ|``, DLJ = -(duration**3 / v_peak**2) int (d2v/dt2)**2 dt, without underflow."""
     with np.errstate(divide="ignore"):
         return -np.log(duration ** 3 * jerk_cost)
 
@@ -166,7 +166,7 @@ def _ldlj(duration: np.ndarray, jerk_cost: np.ndarray) -> np.ndarray:
 def ldlj(speed: ArrayLike, fs: float) -> float:
     """Log dimensionless jerk of a speed profile (m/s) sampled at ``fs`` Hz (at least 3 samples).
 
-    LDLJ = -ln |DLJ|, DLJ = -((t2 - t1)**3 / v_peak**2) int_{t1}^{t2} (d2v/dt2)**2 dt
+    LDLJ = ``-ln |DLJ|``, DLJ = -((t2 - t1)**3 / v_peak**2) int_{t1}^{t2} (d2v/dt2)**2 dt
     (Balasubramanian et al. 2015, definition of LDLJ; chapter 1, eq-ldlj), as the authors' code
     ``log_dimensionless_jerk``: duration N/fs, jerk by second differences, the integral as a sum times
     1/fs; v / v_peak is differentiated (same value, no under- or overflow). More negative is less

@@ -17,12 +17,12 @@ roboticstoolbox arm:
 * **IK.** A target outside the arm's reach shell (:mod:`skilllib.workspace`: the distances from
   the shoulder the tool point can take) is *unreachable* and not searched. Inside it,
   :func:`skilllib.ik.solve_ik` runs Levenberg-Marquardt seeded with the previous sample's solution,
-  then restarts and other roboticstoolbox solvers, until the position residual |p(q) - p*| is within
+  then restarts and other roboticstoolbox solvers, until the position residual ``|p(q) - p*|`` is within
   :data:`IK_RESIDUAL_TOL_M` (and the orientation residual within the same number in rad) inside the
   joint limits; if none succeeds it is an *IK failure*, reported with cond J at the last solved sample.
 * **Jacobian and singularity.** ``ETS.jacob0`` (world frame). For a square J: det J and the
   2-norm condition number; for a redundant arm (n > 6) ``det_j`` is Yoshikawa's manipulability
-  sqrt(det(J J')) (equal to |det J| when J is square; Corke 2017, sec. 8.2.2) and qd is the
+  sqrt(det(J J')) (equal to ``|det J|`` when J is square; Corke 2017, sec. 8.2.2) and qd is the
   minimum-norm solution J^+ v (pseudo-inverse; Corke 2017, sec. 8.4.2).
 
 Problems are flagged per sample ({sample, reason}) and never hidden: an unreachable target or an
@@ -101,7 +101,7 @@ class TransferResult:
 
     @property
     def peak_abs_qd(self) -> np.ndarray:
-        """Peak |qd_j| per joint over the computed samples, rad/s (NaN if none was computed)."""
+        """Peak ``|qd_j|`` per joint over the computed samples, rad/s (NaN if none was computed)."""
         ok = np.all(np.isfinite(self.qd), axis=1)
         if not ok.any():
             return np.full(self.qd.shape[1], np.nan)
@@ -109,7 +109,7 @@ class TransferResult:
 
     @property
     def min_abs_det_j(self) -> float:
-        """Smallest |det J| (manipulability for n != 6) over the computed samples."""
+        """Smallest ``|det J|`` (manipulability for n != 6) over the computed samples."""
         return _nan_reduce(np.min, np.abs(self.det_j))
 
     @property

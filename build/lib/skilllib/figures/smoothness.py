@@ -12,7 +12,7 @@ from ._common import CLUSTER_COLORS
 
 def plot_sparc_spectra(spectra: Mapping[str, SparcSpectrum], ax: plt.Axes | None = None,
                        fmax: float | None = None) -> plt.Figure:
-    """Normalised Fourier magnitude spectra |V(f)|/V(0) against frequency (Hz): the band whose arc length
+    """Normalised Fourier magnitude spectra ``|V(f)| / V(0)`` against frequency (Hz): the band whose arc length
     SPARC measures drawn thick, the rest thin; the amplitude threshold (dashed), the maximum cut-off fc
     (dotted) and each adaptive cut-off (dot). Labels carry the SPARC values."""
     fig, ax = (ax.figure, ax) if ax is not None else plt.subplots(figsize=(5.5, 3.4))
