@@ -898,8 +898,7 @@ assert per_arm["max_cond_J"].max() < 10, "text: 'the condition numbers stay belo
 #
 # The paper names the maximum joint acceleration as a limit beside the velocity, and the intermittency
 # that SPARC measures reaches an actuator through acceleration and jerk, not velocity. Differentiating
-# [](#eq-jacobian) along the path gives the joint accelerations (Haviland & Corke 2023, "Manipulator
-# differential kinematics", part II):
+# [](#eq-jacobian) along the path gives the joint accelerations [@haviland2023]:
 #
 # $$
 # J(q)\, \ddot q = a - \dot J(q, \dot q)\, \dot q ,
@@ -984,9 +983,9 @@ fig = figures.plot_joint_accelerations(dyn["simple6"])
 #   configuration uses 5 rad/s² on every joint, "chosen conservatively". Torques: 150 N m on the base,
 #   shoulder and elbow, 28 N m on the wrist (UR's "Max. joint torques"). The toolbox's model carries the
 #   masses and centres of mass UR publish but no link inertias: point masses.
-# - **Puma 560**: torques 97.6, 186.4, 89.4, 24.2, 20.1 and 21.3 N m (Armstrong, Khatib & Burdick 1986,
-#   Table 7). No separate acceleration limit: its model (Corke & Armstrong-Hélouvry 1994, with motor
-#   inertias, gear ratios and friction) turns the torque limits into the accelerations it can reach.
+# - **Puma 560**: torques 97.6, 186.4, 89.4, 24.2, 20.1 and 21.3 N m (Table 7 of
+#   [@armstrong1986]). No separate acceleration limit: its model [@corke1994], with motor
+#   inertias, gear ratios and friction, turns the torque limits into the accelerations it can reach.
 # - **Panda**: the datasheet's accelerations (15, 7.5, 10, 12.5, 15, 20, 20 rad/s²) and torques
 #   (87 N m on joints 1 to 4, 12 N m on 5 to 7).
 #

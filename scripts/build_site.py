@@ -292,8 +292,9 @@ def with_outputs_of(nb, ran):
 # ------------------------------------------------------------------------------ build information --
 
 def build_info(project: Path) -> dict[str, str]:
-    """Version, commit and date for the footer: version from myst.yml `project: version` or else
-    pyproject.toml; the commit (with "+ local changes" when the work tree differs from it); the date
+    """Version, commit and date for the footer: version from myst.yml `project: version`, or else
+    pyproject.toml's `project.version`, or, when that is dynamic, the `__version__` of the package that
+    `tool.setuptools.dynamic.version.attr` names (read from its source, not imported); the commit (with "+ local changes" when the work tree differs from it); the date
     (UTC, or SOURCE_DATE_EPOCH when set, for reproducible builds)."""
     version = "unversioned"
     try:
@@ -304,8 +305,17 @@ def build_info(project: Path) -> dict[str, str]:
     if version == "unversioned" and (project / "pyproject.toml").is_file():
         import tomllib
         try:
-            version = tomllib.loads((project / "pyproject.toml").read_text(encoding="utf-8"))["project"]["version"]
-        except (KeyError, tomllib.TOMLDecodeError):
+            meta = tomllib.loads((project / "pyproject.toml").read_text(encoding="utf-8"))
+            version = str(meta["project"].get("version") or "") or version
+            attr = meta.get("tool", {}).get("setuptools", {}).get("dynamic", {}).get("version", {}).get("attr")
+            if version == "unversioned" and attr:
+                module, name = attr.rsplit(".", 1)
+                src = project / (module.replace(".", "/") + ".py")
+                if not src.is_file():
+                    src = project / module.replace(".", "/") / "__init__.py"
+                m = re.search(rf"^{re.escape(name)}\s*=\s*['\"]([^'\"]+)['\"]", src.read_text(encoding="utf-8"), re.M)
+                version = m.group(1) if m else version
+        except (KeyError, OSError, tomllib.TOMLDecodeError):
             pass
     commit = "not a git checkout"
     try:
