@@ -62,11 +62,13 @@ sync: venv
 bench: venv
 	$(BIN)/python benchmarks/bench_sparc.py
 
-# Mutation testing of the library's core modules (outside `make test`: about an hour on two cores).
+# Mutation testing of the library's core modules (outside `make test`: several hours on two cores; BLAS and
+# OpenMP on one thread, as forked test processes can hang on thread pools the parent started).
 # mutmut's configuration is in pyproject.toml; the equivalent mutants are in tests/mutation_equivalent.toml.
 mutation: venv
 	rm -rf mutants && mkdir -p _build
-	$(BIN)/mutmut run --max-children 2 > _build/mutmut.log 2>&1 || (tail -c 2000 _build/mutmut.log; exit 1)
+	OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 \
+	  $(BIN)/mutmut run --max-children 2 > _build/mutmut.log 2>&1 || (tail -c 2000 _build/mutmut.log; exit 1)
 	$(BIN)/python scripts/mutation_report.py
 
 venv: $(STAMP) $(KERNEL)

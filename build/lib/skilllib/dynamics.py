@@ -22,12 +22,12 @@ The transfer (:mod:`skilllib.transfer`) gives joint angles q and velocities qd =
   inertia and joint friction (viscous and Coulomb) where the model has them (the Puma 560's does).
 
 **Time scaling under every limit.** Stretching time uniformly by s keeps the path and divides qd by s and
-qdd by s^2, so the velocity limits need s_v = max_j peak|qd_j| / qd_max_j and the acceleration limits
-s_a = sqrt(max_j peak|qdd_j| / qdd_max_j). Torque is not a power of s: tau(s) = M(q) qdd / s^2 +
+qdd by s^2, so the velocity limits need ``s_v = max_j peak|qd_j| / qd_max_j`` and the acceleration limits
+``s_a = sqrt(max_j peak|qdd_j| / qdd_max_j)``. Torque is not a power of s: tau(s) = M(q) qdd / s^2 +
 C(q, qd) qd / s^2 + viscous qd / s + Coulomb + g(q). The smallest s >= max(1, s_v, s_a) at which every
-|tau_j| stays within its limit on every sample is found numerically: the largest feasible x = 1/s is
+``|tau_j|`` stays within its limit on every sample is found numerically: the largest feasible x = 1/s is
 bracketed on a grid and refined with Brent's method (``scipy.optimize.brentq``) on the largest
-normalised torque max |tau_j| / tau_max_j - 1. When gravity and friction alone exceed a limit no slowing
+normalised torque ``max |tau_j| / tau_max_j - 1``. When gravity and friction alone exceed a limit no slowing
 helps (s = inf). The limit that sets s is the *binding* one.
 """
 from __future__ import annotations
@@ -132,17 +132,17 @@ class JointDynamics:
 
     @property
     def peak_abs_qdd(self) -> np.ndarray:
-        """Peak |qdd_j| per joint over the computed samples, rad/s^2."""
+        """Peak ``|qdd_j|`` per joint over the computed samples, rad/s^2."""
         return self._peak(self.qdd)
 
     @property
     def peak_abs_qddd(self) -> np.ndarray:
-        """Peak |qddd_j| per joint, rad/s^3 (samples whose neighbours were computed)."""
+        """Peak ``|qddd_j|`` per joint, rad/s^3 (samples whose neighbours were computed)."""
         return self._peak(self.qddd)
 
     @property
     def peak_abs_tau(self) -> np.ndarray | None:
-        """Peak |tau_j| per joint, N m, or None without dynamic parameters."""
+        """Peak ``|tau_j|`` per joint, N m, or None without dynamic parameters."""
         return self._peak(self.tau)
 
     def torques(self, s: float = 1.0) -> np.ndarray | None:
@@ -158,7 +158,7 @@ class JointDynamics:
         return out
 
     def _torque_ratio(self, x: float) -> float:
-        """Largest |tau_j| / tau_max_j over the computed samples at speed factor x = 1/s."""
+        """Largest ``|tau_j| / tau_max_j`` over the computed samples at speed factor x = 1/s."""
         tau = self.torques(1.0 / x)
         return float(np.nanmax(np.abs(tau) / self.tau_limits))
 
@@ -231,8 +231,8 @@ class JointDynamics:
         return best
 
     def limits_hold(self, s: float = 1.0) -> bool:
-        """True when, slowed by s, every computed sample has |qd_j| <= qd_max_j, |qdd_j| <= qdd_max_j and
-        |tau_j| <= tau_max_j (relative tolerance :data:`~skilllib.transfer.QD_LIMIT_RTOL`)."""
+        """True when, slowed by s, every computed sample has ``|qd_j| <= qd_max_j``, ``|qdd_j| <= qdd_max_j`` and
+        ``|tau_j| <= tau_max_j`` (relative tolerance :data:`~skilllib.transfer.QD_LIMIT_RTOL`)."""
         ok = self.ok
         if not ok.any():
             return False

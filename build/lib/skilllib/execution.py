@@ -17,7 +17,7 @@ question of execution. :func:`execute` simulates it with a joint velocity contro
   joint velocity towards it; its change per tick is clipped to +-qdd_max dt (**acceleration limits**);
   the joint angles integrate the joint velocity (trapezoidal rule);
 * the **executed tool path** is the forward kinematics of the joint angles, p(q) (m, base frame), and the
-  tool velocity J(q) qd (its linear part, m/s; no differencing); the **tracking error** is |p(q(t_k)) - p_k|
+  tool velocity J(q) qd (its linear part, m/s; no differencing); the **tracking error** is ``|p(q(t_k)) - p_k|``
   at the command's sample instants, against the prototype's path.
 
 The executed speed is measured as the prototype's was: at the command's sample instants (the executed

@@ -115,7 +115,7 @@ def speed_noise(position_noise_m: float, fs: float, window: int, cutoff_hz: floa
     """3-D speed noise (RMS, m/s) that white position noise (RMS ``position_noise_m`` m per axis) has after
     the zero-lag low-pass at ``cutoff_hz`` (None: no filter) and the Savitzky-Golay derivative (quadratic,
     ``window`` samples) at ``fs`` Hz: sqrt(3) x the per-axis SD, from the combined gain by Parseval's
-    theorem, var = noise**2 x mean over 0..fs/2 of |D(f)|**2 |H(f)|**(2 passes)."""
+    theorem, ``var = noise**2 x mean over 0..fs/2 of |D(f)|**2 |H(f)|**(2 passes)``."""
     f = np.linspace(0, fs / 2, 4097)
     _, d = freqz(savgol_coeffs(window, 2, deriv=1, delta=1.0 / fs, use="dot"), worN=f, fs=fs)
     gain = np.abs(d) ** 2

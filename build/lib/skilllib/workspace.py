@@ -9,12 +9,12 @@ workspace is reported as an IK failure). The workspace is bounded here by a **re
   Jacobian at any pose: column j of ``jacob0`` is (w_j x (p - o_j), w_j) for a revolute joint with unit
   axis w_j through o_j, so p + w_j x v_j is the point of axis j nearest the tool point p.
 * Rotating about an axis that passes through S does not change a point's distance from S, so the
-  distance r(q) = |p(q) - S| of the tool point does not depend on q1 and q2 (nor on the last joint when
+  distance ``r(q) = |p(q) - S|`` of the tool point does not depend on q1 and q2 (nor on the last joint when
   the tool point lies on its axis). Its range [r_min, r_max] over the joint limits ``qlim`` is found
   numerically: a seeded random sample of poses, then bounded local optimisation (L-BFGS-B) from the
   best of them, for the largest and the smallest distance.
 
-Every reachable tool point satisfies r_min <= |p - S| <= r_max, whatever the orientation, so a target
+Every reachable tool point satisfies ``r_min <= |p - S| <= r_max``, whatever the orientation, so a target
 outside the shell is certainly out of reach (:data:`REACH_TOL_M` allows for rounding). Inside the shell a
 target may still be unreachable with the orientation the transfer holds or within the joint limits; that
 is never decided here. For Simple6 (two 1 m links, spherical wrist at the tool point, no tool offset) the
