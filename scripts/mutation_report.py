@@ -29,9 +29,9 @@ KILLED = {"killed", "timeout", "caught by type check"}
 LINE = re.compile(r"^\s*(?P<name>[\w.]+__mutmut_\d+): (?P<status>.+?)\s*$")
 
 
-def mutmut_results() -> dict[str, str]:
-    """Mutant name -> status, from ``mutmut results --all true`` in the repository root."""
-    out = subprocess.run([sys.executable, "-m", "mutmut", "results", "--all", "true"], cwd=ROOT,
+def mutmut_results(where: Path = ROOT) -> dict[str, str]:
+    """Mutant name -> status, from ``mutmut results --all true`` in ``where`` (a checkout that ran mutmut)."""
+    out = subprocess.run([sys.executable, "-m", "mutmut", "results", "--all", "true"], cwd=where,
                          capture_output=True, text=True, check=True).stdout
     return {m["name"]: m["status"] for m in map(LINE.match, out.splitlines()) if m}
 
@@ -50,8 +50,13 @@ def module_of(name: str) -> str:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--survivors", action="store_true", help="list every mutant that is not killed")
+    ap.add_argument("--from", dest="dirs", action="append", type=Path, metavar="DIR",
+                    help="read the results of mutmut runs in these checkouts (several runs that each mutated "
+                         "some modules; default: this repository)")
     args = ap.parse_args()
-    results = mutmut_results()
+    results = {}
+    for where in args.dirs or [ROOT]:
+        results.update(mutmut_results(where))
     if not results:
         print("no mutmut results: run `make mutation` first", file=sys.stderr)
         return 1
