@@ -289,7 +289,8 @@ def is_valid(samples: np.ndarray, labels: np.ndarray, average: float | None = No
     example criterion (every cluster reaches above the average silhouette). That example also weighs the
     spread of cluster sizes; this criterion does not.
     """
-    avg = float(np.mean(samples)) if average is None else float(average)
+    samples = np.asarray(samples, dtype=float)  # averaged in float64, as failing_clusters does
+    avg = float(samples.mean()) if average is None else float(average)
     return avg > 0 and not failing_clusters(samples, labels, avg)
 
 

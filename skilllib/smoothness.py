@@ -156,11 +156,14 @@ def sparc_bands(speeds: Sequence[ArrayLike] | np.ndarray, fs: float, fc: float =
 
 # --- log dimensionless jerk ------------------------------------------------------------------------
 
-def _ldlj(duration: np.ndarray, jerk_cost: np.ndarray) -> np.ndarray:
-    """LDLJ = -ln(duration**3 * jerk_cost) with jerk_cost = int (d2v/dt2)**2 dt of v / v_peak: the
-    same as ``-ln |DLJ|``, DLJ = -(duration**3 / v_peak**2) int (d2v/dt2)**2 dt, without underflow."""
+def _ldlj(n: np.ndarray, d2_cost: np.ndarray) -> np.ndarray:
+    """LDLJ = -ln(n**3 * d2_cost), d2_cost = sum of the squared second differences of v / v_peak over
+    the n samples: ``-ln |DLJ|``, DLJ = -(duration**3 / v_peak**2) int (d2v/dt2)**2 dt, with time in
+    samples. The sampling interval dt cancels: duration = n dt, d2v/dt2 = (second difference) / dt**2
+    and the integral a sum times dt give duration**3 int (d2v/dt2)**2 dt = n**3 d2_cost, so no power
+    of dt can under- or overflow. Constant speed (d2_cost 0) gives +inf without a warning."""
     with np.errstate(divide="ignore"):
-        return -np.log(duration ** 3 * jerk_cost)
+        return -np.log(np.asarray(n, dtype=float) ** 3 * d2_cost)
 
 
 def ldlj(speed: ArrayLike, fs: float) -> float:
@@ -169,15 +172,17 @@ def ldlj(speed: ArrayLike, fs: float) -> float:
     LDLJ = ``-ln |DLJ|``, DLJ = -((t2 - t1)**3 / v_peak**2) int_{t1}^{t2} (d2v/dt2)**2 dt
     (Balasubramanian et al. 2015, definition of LDLJ; chapter 1, eq-ldlj), as the authors' code
     ``log_dimensionless_jerk``: duration N/fs, jerk by second differences, the integral as a sum times
-    1/fs; v / v_peak is differentiated (same value, no under- or overflow). More negative is less
-    smooth; a profile of constant speed has no jerk and gives +inf."""
+    1/fs; v / v_peak is differentiated (same value, no under- or overflow). The powers of 1/fs cancel
+    (the measure is dimensionless), so the value depends on the samples only; ``fs`` is checked, and
+    any finite fs > 0 gives the same finite value. More negative is less smooth; a profile of constant
+    speed has no jerk and gives +inf."""
     v = _as_speed(speed, min_len=3)
-    dt = 1.0 / _check_fs(fs)
-    jerk = np.diff(v / np.abs(v).max(), 2) / dt ** 2
-    return float(_ldlj(v.size * dt, np.sum(jerk ** 2) * dt))
+    _check_fs(fs)
+    d2 = np.diff(v / np.abs(v).max(), 2)
+    return float(_ldlj(v.size, np.sum(d2 ** 2)))
 
 
-def _ldlj_block(flat: np.ndarray, lengths: np.ndarray, dt: float, start: int,
+def _ldlj_block(flat: np.ndarray, lengths: np.ndarray, start: int,
                 block: Sequence[ArrayLike]) -> np.ndarray:
     """LDLJ of each profile of one packed block: second differences of the concatenated samples,
     those straddling two profiles set to zero, summed per profile."""
@@ -187,17 +192,17 @@ def _ldlj_block(flat: np.ndarray, lengths: np.ndarray, dt: float, start: int,
     zero = np.flatnonzero(v_peak == 0)
     if zero.size:
         _as_speed(block[zero[0]], f"speeds[{start + zero[0]}]")
-    jsq = (np.diff(flat / np.repeat(v_peak, lengths), 2) / dt ** 2) ** 2
+    d2sq = np.diff(flat / np.repeat(v_peak, lengths), 2) ** 2
     ends = (offsets + lengths)[:-1]
-    jsq[np.concatenate([ends - 2, ends - 1])] = 0.0  # differences across two profiles
-    return _ldlj(lengths * dt, np.add.reduceat(jsq, offsets) * dt)
+    d2sq[np.concatenate([ends - 2, ends - 1])] = 0.0  # differences across two profiles
+    return _ldlj(lengths, np.add.reduceat(d2sq, offsets))
 
 
 def ldlj_many(speeds: Sequence[ArrayLike] | np.ndarray, fs: float) -> np.ndarray:
     """LDLJ of each of many speed profiles (ragged, m/s, at ``fs`` Hz): :func:`ldlj` one by one,
     vectorised over the concatenated samples. ValueError names the index of a bad profile."""
-    dt = 1.0 / _check_fs(fs)
-    parts = [_ldlj_block(*_pack(block, start, min_len=3), dt, start, block)
+    _check_fs(fs)  # LDLJ does not depend on fs (see ldlj)
+    parts = [_ldlj_block(*_pack(block, start, min_len=3), start, block)
              for start, block in _blocks(speeds)]
     return np.concatenate(parts) if parts else np.empty(0)
 
