@@ -84,7 +84,8 @@ def read_table(path: str | Path) -> tuple[pd.DataFrame, np.ndarray]:
             if 0 <= rec < len(lines):
                 msg = msg.replace(m.group(0), f"in line {lines[rec]}")
         raise DataFormatError(f"{path}: not a valid CSV table: {msg}") from None
-    except pd.errors.EmptyDataError:
-        raise DataFormatError(f"{path}: file is empty") from None
+    except pd.errors.EmptyDataError:  # text is not blank (checked above): a blank line before the header
+        raise DataFormatError(f"{path}: no column names on line 1: the header must be the first line, "
+                              f"not after blank lines") from None
     lines = record_lines(text)[:len(df)]
     return df, lines

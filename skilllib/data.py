@@ -288,9 +288,6 @@ def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, line
         "participant": [k[0] for k in keys], "trial": [k[1] for k in keys],
         "n_samples": [len(groups[k]) for k in keys], "first_line": [line(groups[k][0]) for k in keys],
         "status": ["invalid" if r else "ok" for r in reasons], "reason": reasons, "timing": timings})
-    for i, key in enumerate(keys):  # a trial made invalid after resampling was decided keeps no resampled copy
-        if reasons[i]:
-            resampled.pop(key, None)
     rows = {k: np.asarray(groups[k]) for k in keys}
     return Recordings(frame=frame, trials=trials, fs=fs, source=source, _rows=rows, _resampled=resampled)
 

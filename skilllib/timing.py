@@ -71,15 +71,18 @@ def time_unit_advice(step: float) -> str:
 @dataclass(frozen=True)
 class Irregularity:
     """How a trial's intervals deviate from the file's ``dt``: the largest relative deviation of an
-    interval from dt (``max_jitter``, e.g. 0.5 for an interval of 1.5 dt or 0.5 dt), the number of
-    dropped frames (``dropped``: sum over intervals of round(d / dt) - 1) and the longest interval
-    (``max_interval`` in s, ``at``: index of the sample after it), against the interval ``dt`` (s)."""
+    interval from dt (``max_jitter``, e.g. 0.5 for an interval of 1.5 dt or 0.5 dt; a dropped frame
+    counts here), the number of dropped frames (``dropped``: sum over intervals of round(d / dt) - 1),
+    the longest interval (``max_interval`` in s, ``at``: index of the sample after it), against the
+    interval ``dt`` (s), and the jitter apart from dropped frames (``frame_jitter``: the largest
+    deviation of an interval from its nearest whole number of frames, at least one, relative to dt)."""
 
     max_jitter: float
     dropped: int
     max_interval: float
     at: int
     dt: float
+    frame_jitter: float
 
     @property
     def regular(self) -> bool:
@@ -91,8 +94,9 @@ class Irregularity:
         return self.max_interval > MAX_GAP_INTERVALS * self.dt
 
     def describe(self) -> str:
-        """``"jitter up to 1.9 ms, 2 dropped frames"``: what resampling bridged."""
-        parts = [f"jitter up to {1e3 * self.max_jitter * self.dt:.2g} ms"]
+        """``"jitter up to 1.9 ms, 2 dropped frames"``: what resampling bridged (the jitter apart from
+        the dropped frames, ``frame_jitter``)."""
+        parts = [f"jitter up to {1e3 * self.frame_jitter * self.dt:.2g} ms"]
         if self.dropped:
             parts.append(f"{self.dropped} dropped frame{'s' if self.dropped > 1 else ''}")
         return ", ".join(parts)
@@ -103,8 +107,10 @@ def irregularity(t: np.ndarray, dt: float) -> Irregularity:
     d = np.diff(np.asarray(t, dtype=float))
     rel = np.abs(d / dt - 1)
     k = int(np.argmax(d))
-    dropped = int(np.maximum(np.round(d / dt) - 1, 0).sum())
-    return Irregularity(float(rel.max()), dropped, float(d[k]), k + 1, float(dt))
+    frames = np.maximum(np.round(d / dt), 1)
+    dropped = int((frames - 1).sum())
+    frame_jitter = float(np.abs(d / dt - frames).max())
+    return Irregularity(float(rel.max()), dropped, float(d[k]), k + 1, float(dt), frame_jitter)
 
 
 def resample_uniform(t: np.ndarray, pos: np.ndarray, contact: np.ndarray,
