@@ -449,3 +449,11 @@ def test_an_unterminated_quote_is_a_csv_error_naming_the_file(tmp_path):
     p.write_text(",".join(COLUMNS) + '\n1,1,0,0,0,0,"0\n1,1,0.1,0,0,0,0\n')
     with pytest.raises(DataFormatError, match=rf"^{p}: not a valid CSV table: \S"):
         read_recordings(p)
+
+
+@pytest.mark.parametrize("missing", [None, pd.NA, float("nan")])
+def test_a_missing_id_in_a_dataframe_is_empty_not_the_text_none(missing):
+    """A DataFrame given through the API may hold None, pd.NA or NaN in a text id column: each is an
+    empty id (an error naming its row), never the participant "None", "<NA>" or "nan"."""
+    with pytest.raises(DataFormatError, match=r"^mine, row 5, column 'participant': participant is empty$"):
+        recordings_from_frame(spoil(cohort_frame(), "participant", 5, missing), source="mine")

@@ -305,3 +305,29 @@ def test_run_lowpass_defaults_to_auto(noisy):
     _, rec, _ = noisy
     assert features.run_lowpass(rec) == features.run_lowpass(rec, "auto")
     assert features.run_lowpass(rec).chosen_by.startswith("auto")
+
+
+def test_select_keeps_the_feature_columns_and_renumbers_the_rows():
+    """select(): the selected rows, the same columns (no old index added as a column), index 0..n-1."""
+    from skilllib.features import select
+    f = pd.DataFrame({"participant": ["1", "1", "2"], "trial": ["1", "2", "1"],
+                      "status": ["excluded", "selected", "selected"], "pv": [0.1, 0.2, 0.3]})
+    s = select(f)
+    assert list(s.columns) == list(f.columns)
+    assert list(s.index) == [0, 1] and list(s["pv"]) == [0.2, 0.3]
+
+
+def test_auto_lowpass_estimates_the_noise_with_the_rates_own_derivative_window():
+    """At 1 kHz the derivative window is wider than its minimum; run_lowpass("auto") must estimate the
+    speed noise with the window of the recordings' rate. Catches the minimum window used at every rate."""
+    from skilllib.cohort import CohortModel, generate_cohort
+    from skilllib.features import MIN_DIFF_WINDOW, approaches, diff_window, run_lowpass
+    from skilllib.filtering import choose_lowpass
+    from skilllib.pipeline import load_input
+    fs = 1000.0
+    rec = load_input(generate_cohort(1, CohortModel(n_participants=1, n_trials=3, fs=fs)).frame)
+    assert rec.fs == pytest.approx(fs) and diff_window(rec.fs) != MIN_DIFF_WINDOW
+    got = run_lowpass(rec, "auto")
+    want = choose_lowpass("auto", approaches(rec), rec.fs, diff_window(rec.fs))
+    other = choose_lowpass("auto", approaches(rec), rec.fs, MIN_DIFF_WINDOW)
+    assert got.speed_noise == want.speed_noise and got.speed_noise != other.speed_noise

@@ -29,7 +29,7 @@ from skilllib import figures as fg  # noqa: E402
 from skilllib import pipeline, summary  # noqa: E402
 from skilllib.data import MAX_RANGE_M  # noqa: E402
 from skilllib.cohort import CohortModel, generate_cohort  # noqa: E402
-from skilllib.filtering import Lowpass  # noqa: E402
+from skilllib.filtering import NO_FILTER, Lowpass  # noqa: E402
 from skilllib.robots import get_robot  # noqa: E402
 
 FS = 60.0
@@ -300,3 +300,76 @@ def test_summary_ends_with_every_message_as_a_note(small_run, lines):
 def test_summary_of_an_unknown_sampling_rate(small_run):
     run_ = dataclasses.replace(small_run, recordings=SimpleNamespace(fs=float("nan")), prototypes=None)
     assert summary.summary_lines(run_)[0].endswith("participant(s) at an unknown sampling rate")
+
+
+# --- the run's options reach every step -----------------------------------------------------------
+
+def test_the_prototypes_trajectory_is_filtered_as_the_trials_were(small_run):
+    """The transfer gets the prototype's segment low-pass filtered at the run's cut-off, the trajectory
+    its features came from. Catches the filter dropped for the prototype's segment (auto or none used)."""
+    from skilllib.features import segment
+    lowpass = small_run.features.attrs["lowpass"]
+    assert lowpass.cutoff_hz == CUTOFF_HZ
+    protos = small_run.prototypes.prototypes
+    for c, (t, speed) in enumerate(small_run.profiles):
+        p, tr = protos.at[c, "participant"], protos.at[c, "trial"]
+        filtered = segment(small_run.recordings, p, tr, lowpass=lowpass)
+        raw = segment(small_run.recordings, p, tr, lowpass=NO_FILTER)
+        np.testing.assert_array_equal(speed, filtered.speed)
+        assert raw.speed.shape != speed.shape or not np.allclose(raw.speed, speed, rtol=0, atol=1e-6)
+
+
+def test_progress_wraps_each_stage_with_its_name():
+    """``progress(items, description)`` wraps the features, the silhouette sweep and the transfer loop.
+    Catches a stage run without it (a terminal would show no bar) or under another name."""
+    seen = []
+
+    def progress(items, desc):
+        seen.append((desc, len(items)))
+        return items
+
+    frame = generate_cohort(3, CohortModel(n_participants=3, n_trials=8, fs=FS)).frame
+    run_ = pipeline.run(frame, None, k=2, amp_th=AMP_TH, lowpass=CUTOFF_HZ, robot=ROBOT, progress=progress,
+                        write_figures=False)
+    names = [d for d, _ in seen]
+    assert names[0] == "features" and "silhouette" in names and ("transfer", 2) in seen
+    assert names.index("silhouette") < names.index("transfer")
+    assert len(run_.transfers) == 2
+
+
+@pytest.mark.parametrize("fc, ok", [(FS / 2, True), (FS / 2 * (1 + 1e-9), False), (FS / 2.5, True)])
+def test_fc_up_to_the_nyquist_frequency_is_accepted(fc, ok):
+    """fc = fs / 2 is the largest accepted cut-off; just above it is an option error naming both.
+    Catches a bound of fs / 3 (rejects fc = fs / 2.5) or a strict comparison the other way."""
+    params = {"fc": fc, "amp_th": 0.05, "padlevel": 4}
+    if ok:
+        pipeline._check_nyquist(params, FS)
+    else:
+        with pytest.raises(pipeline.OptionError, match=rf"Nyquist frequency {FS / 2:g} Hz"):
+            pipeline._check_nyquist(params, FS)
+    pipeline._check_nyquist({**params, "fc": 1e6}, float("nan"))  # rate unknown: nothing to check against
+
+
+@pytest.fixture(scope="module")
+def started_late() -> pd.DataFrame:
+    """8 trials whose recording starts half-way through the approach: no rest before the onset."""
+    frame = generate_cohort(3, CohortModel(n_participants=2, n_trials=4, fs=FS)).frame
+    g = frame.groupby(["participant", "trial"], sort=False)
+    return frame[g.cumcount() >= g["t"].transform("size") // 2]
+
+
+@pytest.mark.parametrize("lowpass, hint", [
+    ("none", "then try a low-pass filter (--lowpass auto or HZ) (chapter 5)"),
+    (CUTOFF_HZ, "then try a stronger low-pass filter (--lowpass HZ) (chapter 5)"),
+    ("auto", "then try a low-pass filter (--lowpass HZ) (chapter 5)"),
+])
+def test_many_trials_without_rest_get_the_hint_that_fits_the_filter(started_late, lowpass, hint):
+    """More than NO_REST_FRACTION of the trials without rest: the message counts them and suggests the
+    next step for the filter in use (none: a filter; auto that did not filter: a cut-off; a cut-off: a
+    stronger one). Catches the three hints confused or garbled."""
+    run_ = pipeline.run(started_late, None, k=2, lowpass=lowpass, write_figures=False)
+    no_rest = int(run_.features["reason"].astype(str).str.startswith("no rest before onset").sum())
+    assert no_rest > pipeline.NO_REST_FRACTION * len(run_.features)
+    msgs = [m for m in run_.messages if "no rest before onset" in m]
+    assert len(msgs) == 1
+    assert msgs[0].startswith(f"{no_rest} of {len(run_.features)} trials are invalid") and msgs[0].endswith(hint)
