@@ -271,3 +271,15 @@ def test_standard_scaling_leaves_a_constant_feature_unscaled():
     np.testing.assert_array_equal(r.centres["pv"], [0.5, 0.5])
     sparc = f["sparc"].to_numpy()
     np.testing.assert_allclose(sorted(r.centres["sparc"]), sorted([sparc[:15].mean(), sparc[15:].mean()]), rtol=1e-12)
+
+
+def test_duplicate_ids_are_counted_and_three_are_shown():
+    """Five repeated (participant, trial) ids: the error counts all five and shows the first three (a
+    message that lists every duplicate of a large table would be unreadable)."""
+    from skilllib.prototypes import fit_prototypes
+    n = 12
+    df = pd.DataFrame({"participant": ["p"] * n, "trial": [str(i % 7) for i in range(n)],
+                       "pv": np.linspace(0.3, 1.4, n), "sparc": np.linspace(-2.0, -1.4, n)})
+    with pytest.raises(ValueError, match=r"^5 duplicate \(participant, trial\) id\(s\), e\.g\. ") as e:
+        fit_prototypes(df, 2)
+    assert str(e.value).endswith("[('p', '0'), ('p', '1'), ('p', '2')]")

@@ -204,3 +204,16 @@ def test_minimum_jerk_segment_of_one_sample_is_the_onset():
     assert minimum_jerk_segment(1, 0.5, FS).tolist() == [pytest.approx(0.05, abs=1e-15)]
     assert minimum_jerk_segment(1, 0.5, FS, onset_ratio=0.2).tolist() == [pytest.approx(0.2, abs=1e-15)]
 
+
+
+@pytest.mark.parametrize("amp_th", [0.0, -0.1])
+def test_a_threshold_at_or_below_zero_keeps_the_whole_band_as_the_authors(amp_th):
+    """amp_th <= 0: every bin up to fc is above the threshold, so the band runs to fc, as in the
+    authors' code (their ``Mf >= amp_th``). Catches a negative threshold squared into a positive one
+    or turned into one no bin reaches."""
+    v = minimum_jerk_speed(np.linspace(0, 1, 61)) * (1 + 0.3 * np.sin(np.linspace(0, 9, 61)))
+    theirs = sparc_authors(v, FS, padlevel=4, fc=10.0, amp_th=amp_th)[0]
+    assert sparc(v, FS, fc=10.0, amp_th=amp_th) == pytest.approx(theirs, abs=1e-9)
+    assert sparc_many([v], FS, fc=10.0, amp_th=amp_th)[0] == pytest.approx(theirs, abs=1e-9)
+    df = FS / 2 ** 10  # Hz: the bin spacing, n_fft = 2 ** (ceil(log2(61)) + 4) = 1024
+    assert 10.0 - df < sparc_bands([v], FS, fc=10.0, amp_th=amp_th).band_end_hz[0] <= 10.0  # the last bin up to fc
