@@ -457,3 +457,14 @@ def test_a_missing_id_in_a_dataframe_is_empty_not_the_text_none(missing):
     empty id (an error naming its row), never the participant "None", "<NA>" or "nan"."""
     with pytest.raises(DataFormatError, match=r"^mine, row 5, column 'participant': participant is empty$"):
         recordings_from_frame(spoil(cohort_frame(), "participant", 5, missing), source="mine")
+
+
+def test_a_capitalised_column_name_is_reported_with_the_columns_found_and_the_case_hint():
+    """'Participant' instead of 'participant': the message names the missing column, lists the columns
+    found and expected, and says that names are lower case (not the --columns mapping hint)."""
+    f = cohort_frame().rename(columns={"participant": "Participant"})
+    found = ", ".join(f.columns)
+    with pytest.raises(DataFormatError) as e:
+        recordings_from_frame(f, source="mine")
+    assert str(e.value) == (f"mine: required column 'participant' missing (found: {found}; expected: "
+                            f"{', '.join(COLUMNS)}); column names are lower case")

@@ -217,3 +217,12 @@ def test_a_threshold_at_or_below_zero_keeps_the_whole_band_as_the_authors(amp_th
     assert sparc_many([v], FS, fc=10.0, amp_th=amp_th)[0] == pytest.approx(theirs, abs=1e-9)
     df = FS / 2 ** 10  # Hz: the bin spacing, n_fft = 2 ** (ceil(log2(61)) + 4) = 1024
     assert 10.0 - df < sparc_bands([v], FS, fc=10.0, amp_th=amp_th).band_end_hz[0] <= 10.0  # the last bin up to fc
+
+
+def test_profiles_of_text_are_refused_with_the_message_not_a_numpy_error():
+    """Speeds given as text (e.g. read from a file without conversion): a ValueError saying what speeds
+    must be, from sparc_many and ldlj_many alike, never numpy's TypeError from comparing strings."""
+    text = np.array(["0.1", "0.4", "0.2", "0.1"])
+    for many in (sparc_many, ldlj_many):
+        with pytest.raises(ValueError, match=r"^speeds must be a sequence of 1-D speed profiles \(m/s\)$"):
+            many([text], FS)
