@@ -68,6 +68,7 @@ bench: venv
 # `make mutation`: every mutant (about 4,700; many hours on two cores).
 # `make mutation-sample`: the systematic 10 % sample of README "Mutation testing", every mutant whose
 # number ends in 7 (about 450; about an hour on two cores).
+SAMPLE = skilllib.*__mutmut_*7
 MUTMUT = OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 $(BIN)/mutmut run --max-children 2
 mutation: venv
 	rm -rf mutants && mkdir -p _build
@@ -76,8 +77,8 @@ mutation: venv
 
 mutation-sample: venv
 	rm -rf mutants && mkdir -p _build
-	$(MUTMUT) 'skilllib.*__mutmut_*7' > _build/mutmut.log 2>&1 || (tail -c 2000 _build/mutmut.log; exit 1)
-	$(BIN)/python scripts/mutation_report.py
+	$(MUTMUT) '$(SAMPLE)' > _build/mutmut.log 2>&1 || (tail -c 2000 _build/mutmut.log; exit 1)
+	$(BIN)/python scripts/mutation_report.py --only '$(SAMPLE)'
 
 venv: $(STAMP) $(KERNEL)
 $(STAMP): environment.txt pyproject.toml

@@ -3,6 +3,7 @@
 
     .venv/bin/python scripts/mutation_report.py              # the table of README "Mutation testing"
     .venv/bin/python scripts/mutation_report.py --survivors  # also every checked mutant that is not killed
+    .venv/bin/python scripts/mutation_report.py --only 'skilllib.*__mutmut_*7'  # the sample only
 
 Reads `mutmut results --all true` (one line per mutant: ``skilllib.module.x_function__mutmut_N: status``)
 and tests/mutation_equivalent.toml, the mutants judged equivalent (they change no observable behaviour),
@@ -22,6 +23,7 @@ from __future__ import annotations
 
 import argparse
 import collections
+import fnmatch
 import math
 import re
 import subprocess
@@ -66,12 +68,16 @@ def wilson(k: int, n: int, z: float = Z95) -> tuple[float, float]:
     return max(0.0, centre - half), min(1.0, centre + half)
 
 
-def table(results: dict[str, str], equivalent: dict[str, str]) -> list[str]:
-    """The Markdown table of README "Mutation testing", one row per module and one for all."""
+def table(results: dict[str, str], equivalent: dict[str, str],
+          population: dict[str, str] | None = None) -> list[str]:
+    """The Markdown table of README "Mutation testing", one row per module and one for all. ``mutants``
+    counts the mutants of ``population`` (default: ``results``; all of mutmut's mutants when ``results``
+    is a sample of them), ``checked`` those of ``results`` that were run."""
     rows = collections.defaultdict(collections.Counter)
+    for name in population if population is not None else results:
+        rows[module_of(name)]["mutants"] += 1
     for name, status in results.items():
         row = rows[module_of(name)]
-        row["mutants"] += 1
         if status in NOT_RUN:
             continue
         row["checked"] += 1
@@ -101,6 +107,9 @@ def table(results: dict[str, str], equivalent: dict[str, str]) -> list[str]:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--survivors", action="store_true", help="list every checked mutant that is not killed")
+    ap.add_argument("--only", metavar="PATTERN",
+                    help="count only the mutants whose name matches this fnmatch pattern (the sample of "
+                         "`make mutation-sample`: 'skilllib.*__mutmut_*7')")
     ap.add_argument("--from", dest="dirs", action="append", type=Path, metavar="DIR",
                     help="read the results of mutmut runs in these checkouts (default: this repository)")
     args = ap.parse_args()
@@ -109,17 +118,20 @@ def main() -> int:
         for name, status in mutmut_results(where).items():
             if status not in NOT_RUN or name not in results:
                 results[name] = status
+    everything = results
+    if args.only:
+        results = {n: s for n, s in results.items() if fnmatch.fnmatchcase(n, args.only)}
     if not results:
         print("no mutmut results: run `make mutation` or `make mutation-sample` first", file=sys.stderr)
         return 1
     equivalent = tomllib.loads(EQUIVALENT.read_text(encoding="utf-8")).get("equivalent", {}) if EQUIVALENT.exists() else {}
-    print("\n".join(table(results, equivalent)))
+    print("\n".join(table(results, equivalent, everything)))
     if args.survivors:
         print("\nnot killed:")
         for name, status in sorted(results.items()):
             if status not in KILLED | NOT_RUN and name not in equivalent:
                 print(f"  {name}: {status}")
-    stale = [n for n in equivalent if n not in results or results[n] in KILLED]
+    stale = [n for n in equivalent if n not in everything or everything[n] in KILLED]
     if stale:
         print(f"\nthe equivalence list names mutants that are gone or killed: {', '.join(sorted(stale))}",
               file=sys.stderr)
