@@ -29,9 +29,11 @@ serve: venv theme
 # retina figures as the site build, and the tests of the book's site (marker book_site) render those
 # outputs (BOOK_EXECUTED; scripts/build_site.py --executed) instead of executing again; they also fill
 # the site's cache. Two lanes use the two cores: (a) nbmake, then the book_site tests and the JupyterLab
-# test (marker jupyterlab), its output kept in _build/test-book.log and shown at the end; (b) every
-# other test. Both must pass.
+# test (marker jupyterlab), then the two longest other tests (LANE_A: the seed survey recomputed, the
+# wheel installed in a fresh venv; they balance the lanes), its output kept in _build/test-book.log and
+# shown at the end; (b) every other test. Both must pass.
 EXECUTED := _executed
+LANE_A := tests/test_cohort.py::test_the_seed_rule_is_recomputed_from_scratch tests/test_install.py
 test: venv theme
 	rm -rf $(EXECUTED) && mkdir -p $(EXECUTED) _build/ipython/profile_default
 	cp notebooks/[0-9][0-9]_*.ipynb $(EXECUTED)/
@@ -39,11 +41,12 @@ test: venv theme
 	@( IPYTHONDIR=$(CURDIR)/_build/ipython \
 	    $(BIN)/python -m pytest -p no:cacheprovider --nbmake --nbmake-timeout=900 --overwrite $(EXECUTED)/[0-9][0-9]_*.ipynb \
 	  && BOOK_EXECUTED=$(CURDIR)/$(EXECUTED) $(BIN)/python -m pytest -p no:cacheprovider tests -m "book_site or jupyterlab" \
+	  && $(BIN)/python -m pytest -p no:cacheprovider $(LANE_A) \
 	) > _build/test-book.log 2>&1 & book=$$!; \
 	trap 'kill $$book 2>/dev/null' INT TERM; \
-	echo "lane (a): nbmake of the chapters, then the book's site tests and JupyterLab (log: _build/test-book.log)"; \
+	echo "lane (a): nbmake of the chapters, then the book's site tests, JupyterLab and $(LANE_A) (log: _build/test-book.log)"; \
 	echo "lane (b): every other test"; \
-	$(BIN)/python -m pytest tests -m "not (book_site or jupyterlab)"; other=$$?; \
+	$(BIN)/python -m pytest tests -m "not (book_site or jupyterlab)" $(addprefix --deselect ,$(LANE_A)); other=$$?; \
 	wait $$book; lane_a=$$?; \
 	echo "==================== lane (a): nbmake and the book's site ===================="; \
 	cat _build/test-book.log; \
