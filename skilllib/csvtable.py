@@ -89,3 +89,82 @@ def read_table(path: str | Path) -> tuple[pd.DataFrame, np.ndarray]:
                               f"not after blank lines") from None
     lines = record_lines(text)[:len(df)]
     return df, lines
+
+
+#: Extensions pandas decompresses; :func:`read_plain` leaves such files to :func:`read_table`.
+COMPRESSED = (".gz", ".bz2", ".zip", ".xz", ".zst", ".tar")
+_SCAN_BLOCK = 1 << 24  #: bytes read at a time when counting a file's lines
+
+
+def _count_lines(path: Path) -> int:
+    """Lines of the file (a last line without a line break counts)."""
+    n, last = 0, b"\n"
+    with open(path, "rb") as f:
+        while block := f.read(_SCAN_BLOCK):
+            n += block.count(b"\n")
+            last = block[-1:]
+    return n + (last != b"\n")
+
+
+def read_plain(path: str | Path, text_columns: tuple[str, ...], number_columns: tuple[str, ...],
+               na_text: frozenset[str]) -> pd.DataFrame | None:
+    """The columns of a plain CSV file (one record per line, no blank line), read by pyarrow's
+    multi-threaded CSV reader: ``text_columns`` as text exactly as written, ``number_columns`` as float64 (``na_text`` cells
+    as NaN). None when the file is compressed, not plain, lacks one of the columns, or any cell does not
+    parse, or a record is not one line (blank lines, line breaks inside quotes): the caller then reads it with :func:`read_table`, whose messages name the line and column.
+    The rows are the file's lines 2, 3, ... in order."""
+    import pyarrow as pa
+    import pyarrow.csv as pacsv
+
+    path = Path(path)
+    if path.suffix.lower() in COMPRESSED or not path.is_file():
+        return None
+    with open(path, "rb") as f:
+        header = f.readline().decode("utf-8-sig", errors="replace").rstrip("\r\n").split(",")
+    wanted = (*text_columns, *number_columns)
+    if len(set(header)) != len(header) or any(c not in header for c in wanted):
+        return None
+    types = {**{c: pa.string() for c in text_columns}, **{c: pa.float64() for c in number_columns}}
+    convert = pacsv.ConvertOptions(column_types=types, include_columns=list(wanted),
+                                   null_values=sorted(na_text), strings_can_be_null=False,
+                                   quoted_strings_can_be_null=False)
+    n_rows = _count_lines(path) - 1
+    numbers = {c: np.empty(n_rows) for c in number_columns}
+    xyz = [c for c in number_columns if c in ("x", "y", "z")]
+    if len(xyz) == 3:  # the positions as columns of one (R, 3) array, which the validation uses as it is
+        pos = np.empty((n_rows, 3))
+        numbers.update({c: pos[:, j] for j, c in enumerate(xyz)})
+    texts: dict[str, list] = {c: [] for c in text_columns}
+    done = 0
+    try:  # batch by batch into the arrays: the parsed numbers are never held twice
+        with pacsv.open_csv(path, read_options=pacsv.ReadOptions(block_size=1 << 23),
+                            parse_options=pacsv.ParseOptions(newlines_in_values=False),
+                            convert_options=convert) as reader:
+            for batch in reader:
+                k = batch.num_rows
+                if done + k > n_rows:
+                    return None
+                for c in number_columns:
+                    numbers[c][done:done + k] = batch.column(c).to_numpy(zero_copy_only=False)
+                for c in text_columns:
+                    texts[c].append(batch.column(c))
+                done += k
+    except (pa.ArrowInvalid, pa.ArrowTypeError, UnicodeDecodeError, OSError):
+        return None
+    if done != n_rows:  # a blank line (pyarrow skips it): line numbers would shift
+        return None
+    out = {c: pd.Series(pa.chunked_array(v, pa.string()).combine_chunks(), dtype=pd.ArrowDtype(pa.string()))
+           for c, v in texts.items()}
+    del texts
+    out.update(numbers)
+    release_arrow_memory()  # the parser's buffers
+    return pd.DataFrame(out, copy=False)
+
+
+def release_arrow_memory() -> None:
+    """Give the memory pyarrow's pool keeps after its arrays are freed back to the system (mimalloc keeps
+    it for reuse otherwise: about 600 MB after reading a 430 MB file)."""
+    import sys
+
+    if "pyarrow" in sys.modules:
+        sys.modules["pyarrow"].default_memory_pool().release_unused()

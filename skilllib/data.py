@@ -45,14 +45,16 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from . import timing
-from .csvtable import MAX_QUOTE, DataFormatError, quote, read_table, record_lines  # noqa: F401  (re-exported)
+from . import checks, timing
+from .checks import MIN_SAMPLES  # noqa: F401  (re-exported)
+from .ragged import Runs
+from .csvtable import (MAX_QUOTE, DataFormatError, quote, read_plain, read_table, record_lines,  # noqa: F401
+                       release_arrow_memory)  # noqa: F401  (re-exported)
 from .timing import MIN_RATE_HZ, MIXED_FRACTION, RATE_TOLERANCE  # noqa: F401  (re-exported)
 
 COLUMNS = ("participant", "trial", "t", "x", "y", "z", "contact")
 ID_COLUMNS = ("participant", "trial")
 POSITION_COLUMNS = ("x", "y", "z")
-MIN_SAMPLES = 5  #: fewer samples than this make a trial invalid
 MAX_RANGE_M = 2.0  #: a trial spanning more than this (m) has wrong units or a glitch (device: 0.38 m)
 MAX_TYPICAL_SPEED = 20.0  #: m/s; a typical (median over trials of the 95th percentile) speed above it: wrong units
 T_DECIMALS, POS_DECIMALS = 4, 5  #: writer's rounding: 0.1 ms and 0.01 mm
@@ -99,6 +101,7 @@ class Recordings:
     source: str
     _rows: dict = field(repr=False)
     _resampled: dict = field(repr=False, default_factory=dict)
+    _cache: dict = field(repr=False, default_factory=dict, compare=False)
 
     def trial(self, participant: Any, trial: Any) -> Trial:
         """The samples of one trial (whatever its status; resampled when its timing says so); KeyError if
@@ -109,9 +112,31 @@ class Recordings:
         if key in self._resampled:
             return self._resampled[key]
         r = self._rows[key]
-        f = self.frame
-        return Trial(key[0], key[1], f["t"].to_numpy()[r], f[list(POSITION_COLUMNS)].to_numpy()[r],
-                     f["contact"].to_numpy()[r] == 1)
+        t, pos, contact = self.arrays()
+        return Trial(key[0], key[1], t[r], pos[r], contact[r])
+
+    def arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The samples of :attr:`frame` as flat arrays (kept after the first call): ``t`` (R,) s, ``pos``
+        (R, 3) m, ``contact`` (R,) bool. Trial rows as :meth:`runs` gives them (resampled trials excepted)."""
+        if "arrays" not in self._cache:
+            f = self.frame
+            self._cache["arrays"] = (f["t"].to_numpy(dtype=float), f[list(POSITION_COLUMNS)].to_numpy(dtype=float),
+                                     f["contact"].to_numpy() == 1)
+        return self._cache["arrays"]
+
+    def runs(self) -> Runs:
+        """Trial ``i`` (order of :attr:`trials`) as rows ``start[i] .. start[i] + length[i] - 1`` of
+        :meth:`arrays`; meaningful for trials whose rows are contiguous (every usable trial)."""
+        if "runs" not in self._cache:
+            rows = [self._rows[k] for k in self.keys()]
+            start = np.array([r[0] if len(r) else 0 for r in rows], dtype=np.int64)
+            length = np.array([len(r) for r in rows], dtype=np.int64)
+            self._cache["runs"] = Runs(start, length)
+        return self._cache["runs"]
+
+    def is_resampled(self, participant: Any, trial: Any) -> bool:
+        """Whether the trial's samples were resampled onto the uniform grid (:meth:`trial` gives those)."""
+        return (_id(participant), _id(trial)) in self._resampled
 
     def keys(self) -> list[tuple[str, str]]:
         """(participant, trial) of every trial, in order of first appearance."""
@@ -177,53 +202,33 @@ def _numeric(col: pd.Series, name: str, source: str, loc: Callable[[int], str]) 
     return num.to_numpy(dtype=float, na_value=np.nan)
 
 
-def _ids(df: pd.DataFrame, source: str, loc: Callable[[int], str]) -> tuple[np.ndarray, np.ndarray]:
-    """Participant and trial ids as text (object arrays of str); error at an empty id."""
+def _id_text(v: Any) -> str:
+    """One id cell as text: a string stripped; missing (None, NA, NaN) as ""; a number as :func:`_id`."""
+    if isinstance(v, str):
+        return v.strip()
+    if v is None or v is pd.NA or (isinstance(v, float) and np.isnan(v)):
+        return ""
+    return _id(v)
+
+
+def _ids(df: pd.DataFrame, source: str, loc: Callable[[int], str]) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Participant and trial ids as text: per column ``(codes, names)``, the row's code into the distinct
+    names (object array of str, order of first appearance). Each distinct cell is converted once
+    (:func:`_id_text`), not each row. DataFormatError at the first empty id."""
     out = []
     for name in ID_COLUMNS:
-        col = df[name]
-        if col.dtype == object or pd.api.types.is_string_dtype(col):
-            text = np.array([v.strip() if isinstance(v, str) else ("" if v is None or v is pd.NA or
-                             (isinstance(v, float) and np.isnan(v)) else _id(v)) for v in col], dtype=object)
-        else:  # numbers given through the API
-            values = col.to_numpy()
-            text = np.array(["" if isinstance(v, float) and np.isnan(v) else _id(v) for v in values], dtype=object)
-        empty = text == ""
-        if empty.any():
-            i = int(np.flatnonzero(empty)[0])
+        raw_codes, uniques = pd.factorize(df[name], use_na_sentinel=True)
+        text = np.array([_id_text(u) for u in np.asarray(uniques, dtype=object)] + [""], dtype=object)
+        merged, names = pd.factorize(text)  # "01" and " 01" are one id; NA (code -1: the last entry) is ""
+        codes = merged.astype(np.int32)[raw_codes]
+        del raw_codes
+        names = np.asarray(names, dtype=object)
+        empty = np.flatnonzero(names == "")
+        if empty.size and (codes == empty[0]).any():
+            i = int(np.argmax(codes == empty[0]))
             raise DataFormatError(f"{_where(source, loc(i), name)}: {name} is empty")
-        out.append(text)
-    return out[0], out[1]
-
-
-def _trial_problem(t: np.ndarray, pos: np.ndarray, contact: np.ndarray, rows: np.ndarray,
-                   line: Callable[[int], int], loc: Callable[[int], str]) -> str:
-    """Reason why one trial's samples are unusable ('' when fine); time/units checks come later."""
-    n = len(rows)
-    if rows[-1] - rows[0] + 1 != n:
-        gap = int(np.flatnonzero(np.diff(rows) > 1)[0])
-        return (f"rows not contiguous: {loc(rows[0])} to {line(rows[gap])} and from {loc(rows[gap + 1])} "
-                f"on belong to it, with other rows between")
-    if n < MIN_SAMPLES:
-        return f"too few samples ({n}; need at least {MIN_SAMPLES})"
-    if np.isnan(t).any():
-        return f"time stamp missing at {loc(rows[np.flatnonzero(np.isnan(t))[0]])}"
-    for j, name in enumerate(POSITION_COLUMNS):
-        bad = ~np.isfinite(pos[:, j])
-        if bad.any():
-            k = int(np.flatnonzero(bad)[0])
-            what = "missing (NaN)" if np.isnan(pos[k, j]) else "infinite"
-            return f"{name} is {what} at {loc(rows[k])}"
-    if np.isnan(contact).any():
-        return f"contact flag missing at {loc(rows[np.flatnonzero(np.isnan(contact))[0]])}"
-    d = np.diff(t)
-    if (d < 0).any():
-        k = int(np.flatnonzero(d < 0)[0]) + 1
-        return f"time goes backwards at {loc(rows[k])} (t = {t[k]:g} s after {t[k - 1]:g} s)"
-    if (d == 0).any():
-        k = int(np.flatnonzero(d == 0)[0]) + 1
-        return f"time stamp repeated at {loc(rows[k])} (t = {t[k]:g} s)"
-    return ""
+        out.append((codes, names))
+    return out
 
 
 def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, lines: np.ndarray | None = None,
@@ -235,9 +240,13 @@ def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, line
     if not isinstance(df, pd.DataFrame):
         raise DataFormatError(f"{source}: expected a pandas DataFrame, got {type(df).__name__}")
     df = _check_columns(df, source)
-    blank = np.logical_and.reduce([_blank(df[c]) for c in COLUMNS])  # blank lines (kept for line numbers)
+    blank = np.ones(len(df), dtype=bool)  # blank lines (kept for line numbers): every cell empty
+    for c in sorted(COLUMNS, key=lambda c: not pd.api.types.is_numeric_dtype(df[c])):  # cheap columns first
+        if blank.any():
+            blank[blank] = _blank(df[c][blank])
     kept = np.flatnonzero(~blank)
-    df = df.loc[~blank].reset_index(drop=True)
+    if blank.any():
+        df = df.loc[~blank].reset_index(drop=True)
     if df.empty:
         raise DataFormatError(f"{source}: file is empty (a header but no data rows)")
     where = lines[kept] if lines is not None else kept
@@ -251,29 +260,37 @@ def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, line
         return f"line {line(r)}" if lines is not None else f"row {line(r)}"
 
     cols = {c: _numeric(df[c], c, source, loc) for c in ("t", "x", "y", "z", "contact")}
-    part, tr = _ids(df, source, loc)
+    (p_codes, p_names), (t_codes, t_names) = _ids(df, source, loc)
     c = cols["contact"]
     bad = np.isfinite(c) & (c != 0) & (c != 1) | np.isinf(c)
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
         raise DataFormatError(f"{_where(source, loc(i), 'contact')}: contact must be 0 or 1, got {c[i]:g}")
-    frame = pd.DataFrame({"participant": part, "trial": tr, **cols})
-    groups = frame.groupby(["participant", "trial"], sort=False).indices
-    pos_all = frame[list(POSITION_COLUMNS)].to_numpy()
+    del df
+    frame = pd.DataFrame({"participant": pd.Categorical.from_codes(p_codes, categories=p_names),
+                          "trial": pd.Categorical.from_codes(t_codes, categories=t_names), **cols}, copy=False)
+    trial_of_row, keys = _trial_numbers(p_codes, t_codes, p_names, t_names)
+    del p_codes, t_codes
+    counts = np.bincount(trial_of_row, minlength=len(keys))
+    order = np.argsort(trial_of_row, kind="stable").astype(np.int32 if len(trial_of_row) < 2**31 else np.int64)
+    rows = np.split(order, np.cumsum(counts)[:-1])
+    pos_all = _positions(*(cols[c] for c in POSITION_COLUMNS))
     t_all, c_all = cols["t"], cols["contact"]
-    keys = list(groups)
-    reasons = [_trial_problem(t_all[groups[k]], pos_all[groups[k]], c_all[groups[k]], np.asarray(groups[k]),
-                              line, loc) for k in keys]
+    reasons = checks.trial_problems(t_all, pos_all, c_all, trial_of_row, rows, line, loc)
     timings = [""] * len(keys)
     resampled: dict[tuple[str, str], Trial] = {}
     fs = np.nan
-    if any(not r for r in reasons):
-        dt = _check_rates(source, keys, groups, t_all, reasons)
-        _check_units(source, keys, groups, pos_all, reasons, dt)
-        for i, key in enumerate(keys):
+    usable = np.array([not r for r in reasons], dtype=bool)
+    if usable.any():
+        runs = Runs(np.array([r[0] for r in rows], dtype=np.int64), counts.astype(np.int64))
+        stats = checks.trial_stats(t_all, pos_all, runs, usable)
+        dt = _check_rates(source, stats, reasons)
+        _check_units(source, stats, reasons, dt)
+        dev = np.maximum(np.abs(stats.d_min / dt - 1), np.abs(stats.d_max / dt - 1))  # NaN: not usable
+        for i in np.flatnonzero(usable & ~(dev <= timing.JITTER_TOLERANCE)):
             if reasons[i]:
                 continue
-            r = np.asarray(groups[key])
+            r, key = rows[i], keys[i]
             irr = timing.irregularity(t_all[r], dt)
             if irr.gap:
                 reasons[i] = (f"gap in the time stamps: {irr.max_interval:.4f} s before {loc(r[irr.at])}, "
@@ -286,22 +303,41 @@ def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, line
         fs = 1.0 / dt
     trials = pd.DataFrame({
         "participant": [k[0] for k in keys], "trial": [k[1] for k in keys],
-        "n_samples": [len(groups[k]) for k in keys], "first_line": [line(groups[k][0]) for k in keys],
+        "n_samples": counts, "first_line": [line(r[0]) for r in rows],
         "status": ["invalid" if r else "ok" for r in reasons], "reason": reasons, "timing": timings})
-    rows = {k: np.asarray(groups[k]) for k in keys}
-    return Recordings(frame=frame, trials=trials, fs=fs, source=source, _rows=rows, _resampled=resampled)
+    return Recordings(frame=frame, trials=trials, fs=fs, source=source, _rows=dict(zip(keys, rows)),
+                      _resampled=resampled, _cache={"arrays": (t_all, pos_all, c_all == 1)})
 
 
-def _check_rates(source, keys, groups, t_all, reasons) -> float:
+def _trial_numbers(p_codes: np.ndarray, t_codes: np.ndarray, p_names: np.ndarray,
+                   t_names: np.ndarray) -> tuple[np.ndarray, list[tuple[str, str]]]:
+    """The trial number of each row (0, 1, ... in order of first appearance of its (participant, trial))
+    and the trials' ids; computed over the runs of equal consecutive ids, not the rows."""
+    change = np.flatnonzero((p_codes[1:] != p_codes[:-1]) | (t_codes[1:] != t_codes[:-1])) + 1
+    start = np.concatenate([[0], change])
+    run_of, pairs = pd.factorize(p_codes[start].astype(np.int64) * len(t_names) + t_codes[start])
+    trial_of_row = np.repeat(run_of.astype(np.int32), np.diff(np.append(start, len(p_codes))))
+    keys = [(p_names[k // len(t_names)], t_names[k % len(t_names)]) for k in pairs.tolist()]
+    return trial_of_row, keys
+
+
+def _positions(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
+    """The (R, 3) positions: the array x, y and z are the columns of, when they are (as
+    :func:`skilllib.csvtable.read_plain` gives them: no copy), else a new one."""
+    base = x
+    while isinstance(base.base, np.ndarray):
+        base = base.base
+    if base.shape == (len(x), 3) and base.dtype == float and all(
+            np.shares_memory(v, base) and v.ctypes.data == base[:, j].ctypes.data and v.strides == base[:, j].strides
+            for j, v in enumerate((x, y, z))):
+        return base
+    return np.column_stack([x, y, z])
+
+
+def _check_rates(source: str, stats: checks.TrialStats, reasons: list[str]) -> float:
     """Time units and mixed rates (errors), single off-rate trials (invalid); returns the file's
-    sampling interval in s (see :mod:`skilllib.timing`)."""
-    usable = [i for i in range(len(keys)) if not reasons[i]]
-    med_dt = np.full(len(keys), np.nan)
-    mean_dt = np.full(len(keys), np.nan)
-    for i in usable:
-        t = t_all[groups[keys[i]]]
-        med_dt[i] = float(np.median(np.diff(t)))
-        mean_dt[i] = timing.regular_mean_interval(t)
+    sampling interval in s (see :mod:`skilllib.timing`). ``stats``: NaN for the trials not usable."""
+    med_dt, mean_dt = stats.med_dt, stats.mean_dt
     ok = ~np.isnan(med_dt)
     ref = float(np.median(med_dt[ok]))
     if ref > 1 / MIN_RATE_HZ:
@@ -319,14 +355,13 @@ def _check_rates(source, keys, groups, t_all, reasons) -> float:
     return dt
 
 
-def _check_units(source, keys, groups, pos_all, reasons, dt) -> None:
+def _check_units(source: str, stats: checks.TrialStats, reasons: list[str], dt: float) -> None:
     """Positions in millimetres (or centimetres) raise; a single trial with a huge span is invalid."""
-    idx = [i for i in range(len(keys)) if not reasons[i]]
-    if not idx:
+    idx = np.array([i for i in range(len(reasons)) if not reasons[i]], dtype=np.int64)
+    if not idx.size:
         return
-    span = np.array([np.ptp(pos_all[groups[keys[i]]], axis=0).max() for i in idx])
-    speed95 = np.array([np.percentile(np.linalg.norm(np.diff(pos_all[groups[keys[i]]], axis=0), axis=1), 95)
-                        for i in idx]) / dt
+    span = stats.span[idx]
+    speed95 = stats.step95[idx] / dt
     if np.median(span) > MAX_RANGE_M or np.median(speed95) > MAX_TYPICAL_SPEED:
         raise DataFormatError(
             f"{source}: positions look like millimetres or centimetres, not metres (a typical trial spans "
@@ -350,6 +385,12 @@ def read_recordings(path: str | Path) -> Recordings:
     For C3D and TRC files, folders and other column names see :func:`skilllib.formats.load_recordings`.
     """
     path = Path(path)
+    fast = read_plain(path, ID_COLUMNS, ("t", *POSITION_COLUMNS, "contact"), NA_TEXT)
+    if fast is not None:  # a plain file: pyarrow's reader; record k is line k + 2
+        rec = recordings_from_frame(fast, str(path), lines=np.arange(2, len(fast) + 2))
+        del fast
+        release_arrow_memory()
+        return rec
     df, lines = read_table(path)
     return recordings_from_frame(df, str(path), lines=lines)
 

@@ -41,99 +41,20 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
-from scipy.signal import savgol_filter
 
-from . import smoothness
+from . import batch, smoothness
 from .data import Recordings, recordings_from_frame, sort_ids
+from .ragged import first_true
 from .filtering import Lowpass, choose_lowpass
+from .kinematics import (  # noqa: F401  (re-exported: the per-trial definitions)
+    CONTACT_WINDOW, DIFF_SPAN_S, MIN_APPROACH_SAMPLES, MIN_DIFF_WINDOW, MIN_SEGMENT_SAMPLES, NO_CONTACT,
+    ONSET_SPEED, Segment, diff_window, in_contact_reason, no_onset_reason, no_rest_reason, segment_arrays,
+    too_short_reason, velocity)
 
-ONSET_SPEED = 0.05  #: m/s, movement onset threshold (the paper)
-CONTACT_WINDOW = (0.3, 0.7)  #: m/s, selected contact speeds, inclusive (the paper)
-MIN_SEGMENT_SAMPLES = 5  #: fewer samples from onset to contact: too short to analyse
-DIFF_SPAN_S = 2 / 60  #: s, span of the differentiating window (3 samples at the experiment's 60 Hz)
-MIN_DIFF_WINDOW = 3  #: samples: the smallest differentiating window (a quadratic needs three points)
-MIN_APPROACH_SAMPLES = 2  #: fewer samples before contact leave nothing to differentiate
 #: SPARC settings of the SPARC chapter (Balasubramanian et al. 2015 defaults): fc in Hz, amp_th, padlevel
 SPARC_PARAMS: dict[str, float] = dict(smoothness.SPARC_PARAMS)
 FEATURE_COLUMNS = ("participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
                    "sparc_band_end_hz", "sparc_capped", "ldlj", "n", "t_onset", "t_contact", "resampled")
-
-
-@dataclass(frozen=True)
-class Segment:
-    """The approach of one trial from onset to the last sample before contact.
-
-    ``t`` (N,) s as recorded; ``pos`` (N, 3) m; ``vel`` (N, 3) m/s; ``speed`` (N,) m/s; ``fs`` Hz;
-    ``onset`` and ``contact``: indices in the trial of the onset sample and of the first contact sample.
-    """
-
-    participant: str
-    trial: str
-    t: np.ndarray
-    pos: np.ndarray
-    vel: np.ndarray
-    speed: np.ndarray
-    fs: float
-    onset: int
-    contact: int
-
-    @property
-    def duration(self) -> float:
-        """Onset to contact in s (``N / fs``)."""
-        return len(self.speed) / self.fs
-
-
-def diff_window(fs: float, span_s: float = DIFF_SPAN_S) -> int:
-    """Samples (odd, at least 3) of the differentiating window that spans ``span_s`` s at ``fs`` Hz."""
-    return max(MIN_DIFF_WINDOW, 2 * int(round(span_s * fs / 2)) + 1)
-
-
-def velocity(pos: np.ndarray, fs: float, span_s: float = DIFF_SPAN_S) -> np.ndarray:
-    """Velocity (N, 3) in m/s of positions (N, 3) in m sampled at ``fs`` Hz.
-
-    Savitzky-Golay derivative of a quadratic fitted over :func:`diff_window` samples (``span_s`` s;
-    quadratic fits to the first/last window at the ends). At 60 Hz the window has 3 samples and this is
-    ``numpy.gradient(pos, 1/fs, edge_order=2)``. Shorter inputs use the largest odd window that fits;
-    2 samples give their difference quotient. Needs N >= 2.
-    """
-    pos = np.asarray(pos, dtype=float)
-    if len(pos) < 2:
-        raise ValueError(f"need at least 2 samples to differentiate, got {len(pos)}")
-    if len(pos) == 2:
-        return np.repeat((pos[1:] - pos[:1]) * fs, 2, axis=0)
-    window = min(diff_window(fs, span_s), len(pos) - (1 - len(pos) % 2))
-    return savgol_filter(pos, window, polyorder=2, deriv=1, delta=1.0 / fs, axis=0, mode="interp")
-
-
-def segment_arrays(t: np.ndarray, pos: np.ndarray, contact: np.ndarray, fs: float, *,
-                   onset_speed: float = ONSET_SPEED, min_samples: int = MIN_SEGMENT_SAMPLES,
-                   participant: Any = None, trial: Any = None, lowpass: Lowpass | None = None) -> Segment | str:
-    """Segment one trial's samples (``contact`` boolean); returns the :class:`Segment` or the reason
-    (a string) why the trial cannot be segmented. ``lowpass``: the filter applied to the approach's
-    positions before they are differentiated (:mod:`skilllib.filtering`; None: none); the segment's
-    ``pos`` are then the filtered positions."""
-    hits = np.flatnonzero(contact)
-    if hits.size == 0:
-        return "no contact: the contact flag is never 1"
-    c = int(hits[0])
-    if c < MIN_APPROACH_SAMPLES:
-        return f"in contact from sample {c + 1}: no approach recorded before contact"
-    if lowpass is not None and lowpass.cutoff_hz is not None:
-        pos = np.concatenate([lowpass.apply(pos[:c], fs), pos[c:]])
-    vel = velocity(pos[:c], fs)
-    speed = np.linalg.norm(vel, axis=1)
-    moving = np.flatnonzero(speed > onset_speed)
-    if moving.size == 0:
-        return f"no onset: speed stays below {onset_speed:g} m/s before contact (max {speed.max():.3f} m/s)"
-    o = int(moving[0])
-    if o == 0:
-        return (f"no rest before onset: speed {speed[0]:.2f} m/s > {onset_speed:g} m/s at the first sample "
-                f"(the movement started before the recording)")
-    n = c - o
-    if n < min_samples:
-        return f"too short: {n} samples from onset to contact (need at least {min_samples})"
-    return Segment(participant, trial, np.asarray(t[o:c], dtype=float), np.asarray(pos[o:c], dtype=float),
-                   vel[o:], speed[o:], float(fs), o, c)
 
 
 def _as_recordings(recordings: Recordings | pd.DataFrame) -> Recordings:
@@ -185,13 +106,40 @@ def approaches(recordings: Recordings | pd.DataFrame) -> list[np.ndarray]:
 
 def run_lowpass(recordings: Recordings | pd.DataFrame, lowpass: str | float | Lowpass | None = "auto") -> Lowpass:
     """The :class:`skilllib.filtering.Lowpass` that ``lowpass`` (``"auto"``, ``"none"``, Hz or a Lowpass)
-    means for these recordings (``"auto"``: Winter's residual analysis over their approaches)."""
+    means for these recordings (``"auto"``: Winter's residual analysis over their approaches, the noise
+    at rest measured over all trials at once, :func:`skilllib.batch.rest_noise_many`)."""
     rec = _as_recordings(recordings)
     if isinstance(lowpass, Lowpass):
         return lowpass
     fs = rec.fs
     window = diff_window(fs) if np.isfinite(fs) else MIN_DIFF_WINDOW
-    return choose_lowpass(lowpass, approaches(rec) if lowpass == "auto" else [], fs, window)
+    if lowpass != "auto":
+        return choose_lowpass(lowpass, [], fs, window)
+    keys, runs = rec.keys(), rec.runs()
+    t, pos, contact = rec.arrays()
+    ok = (rec.trials["status"] == "ok").to_numpy()
+    length = first_true(contact, runs)  # the approach: rows before the first contact (all without one)
+    separate = {}
+    for i in np.flatnonzero(ok):
+        if rec.is_resampled(*keys[i]):
+            d = rec.trial(*keys[i])
+            hits = np.flatnonzero(d.contact)
+            separate[int(i)] = d.pos[:int(hits[0])] if hits.size else d.pos
+            length[i] = len(separate[int(i)])
+    picked = np.flatnonzero(ok & (length >= 4))
+    if not picked.size or not np.isfinite(fs):
+        return choose_lowpass("auto", [], fs, window)
+    noise = batch.rest_noise_many(pos, runs, length, ok & (length >= 4), fs, separate)
+
+    class Approaches(Sequence):  # read only by the residual analysis, for at most 100 trials
+        def __len__(self) -> int:
+            return len(picked)
+
+        def __getitem__(self, j):
+            i = int(picked[j])
+            return separate[i] if i in separate else pos[runs.start[i]:runs.start[i] + length[i]]
+
+    return choose_lowpass("auto", Approaches(), fs, window, noise=noise)
 
 
 def trial_features(recordings: Recordings | pd.DataFrame, *, sparc_params: Mapping[str, float] | None = None,
@@ -214,35 +162,42 @@ def trial_features(recordings: Recordings | pd.DataFrame, *, sparc_params: Mappi
     rec = _as_recordings(recordings)
     params = {**SPARC_PARAMS, **(sparc_params or {})}
     filt = run_lowpass(rec, lowpass)
-    rows, speeds = [], []
-    items = list(zip(rec.keys(), rec.trials["status"], rec.trials["reason"], rec.trials["timing"]))
-    for (p, tr), status, reason, timing_note in (progress(items, "features") if progress else items):
-        row = {"participant": p, "trial": tr, "status": "invalid", "reason": reason, "resampled": bool(timing_note)}
-        if status == "ok":
-            d = rec.trial(p, tr)
-            seg = segment_arrays(d.t, d.pos, d.contact, rec.fs, onset_speed=onset_speed, min_samples=min_samples,
-                                 lowpass=filt)
-            if isinstance(seg, str):
-                row["reason"] = seg
-            else:
-                v = seg.speed
-                row.update(status="", pv=float(v.max()), contact_speed=float(v[-1]), duration=seg.duration,
-                           ldlj=float(smoothness.ldlj(v, rec.fs)), n=len(v), t_onset=float(d.t[seg.onset]),
-                           t_contact=float(d.t[seg.contact]), _k=len(speeds))
-                speeds.append(v)
-        rows.append(row)
-    bands = smoothness.sparc_bands(speeds, rec.fs, **params) if speeds else None
-    for row in rows:
-        if row["status"] == "":
-            i = row.pop("_k")
-            row.update(sparc=float(bands.sparc[i]), sparc_band_end_hz=float(bands.band_end_hz[i]),
-                       sparc_capped=bool(bands.capped[i]))
-            row["reason"] = _window_reason(row["contact_speed"], window)
-            row["status"] = "excluded" if row["reason"] else "selected"
-    out = pd.DataFrame(rows, columns=list(FEATURE_COLUMNS))
-    out["n"] = out["n"].astype("Int64")
-    out["sparc_capped"] = out["sparc_capped"].astype("boolean")
-    out["resampled"] = out["resampled"].astype(bool)
+    trials = rec.trials
+    keys = rec.keys()
+    ok = (trials["status"] == "ok").to_numpy()
+    for _ in progress([len(keys)], "features") if progress else ():  # vectorised: the bar has one step
+        pass
+    separate = {i: rec.trial(*keys[i]) for i in np.flatnonzero(ok) if rec.is_resampled(*keys[i])}
+    t, pos, contact = rec.arrays()
+    seg = batch.segment_many(t, pos, contact, rec.runs(), rec.fs, which=ok, separate=separate,
+                             onset_speed=onset_speed, min_samples=min_samples, lowpass=filt)
+    done = seg.segmented
+    n_all = len(keys)
+    sparc = np.full(n_all, np.nan)
+    band_end = np.full(n_all, np.nan)
+    capped = pd.array([pd.NA] * n_all, dtype="boolean")
+    if seg.speeds:
+        bands = smoothness.sparc_bands(seg.speeds, rec.fs, **params)
+        sparc[done], band_end[done] = bands.sparc, bands.band_end_hz
+        capped[done] = bands.capped
+    reason = np.where(ok, seg.reason, trials["reason"].to_numpy(dtype=object)).astype(object)
+    status = np.full(n_all, "invalid", dtype=object)
+    lo, hi = window
+    cs = seg.contact_speed
+    inside = done & (cs >= lo) & (cs <= hi)
+    status[inside] = "selected"
+    status[done & ~inside] = "excluded"
+    for i in np.flatnonzero(done & ~inside):
+        reason[i] = _window_reason(cs[i], window)
+    out = pd.DataFrame({
+        "participant": np.array([k[0] for k in keys], dtype=object),
+        "trial": np.array([k[1] for k in keys], dtype=object), "status": status, "reason": reason,
+        "pv": seg.pv, "contact_speed": cs, "duration": seg.duration, "sparc": sparc,
+        "sparc_band_end_hz": band_end, "sparc_capped": capped, "ldlj": seg.ldlj,
+        "n": pd.array(np.where(done, seg.n, 0), dtype="Int64"), "t_onset": seg.t_onset,
+        "t_contact": seg.t_contact, "resampled": trials["timing"].astype(bool).to_numpy()},
+        columns=list(FEATURE_COLUMNS))
+    out.loc[~done, "n"] = pd.NA
     out.attrs["lowpass"] = filt
     return out
 

@@ -130,6 +130,16 @@ def max_cutoff(fs: float, order: int = ORDER) -> float:
     return fs / 2 * (2 ** (1 / PASSES) - 1) ** (1 / (2 * order)) * 0.99
 
 
+#: Median absolute fourth difference of white Gaussian noise of SD 1 (see :func:`rest_noise`).
+REST_NOISE_SCALE = 0.6745 * np.sqrt(70)
+
+
+def rest_samples(fs: float) -> int:
+    """Samples at the start of a trial that :func:`rest_noise` reads: :data:`REST_S` s, at least
+    :data:`REST_MIN_SAMPLES`."""
+    return max(REST_MIN_SAMPLES, int(round(REST_S * fs)))
+
+
 def rest_noise(approaches: Sequence[np.ndarray], fs: float) -> float:
     """White position noise (m, SD per axis) at the start of the trials: over the first :data:`REST_S` s of
     every trial (at least :data:`REST_MIN_SAMPLES`), the median absolute fourth difference over samples and
@@ -243,11 +253,13 @@ def parse_lowpass(value: str | float | None) -> str | float:
 
 
 def choose_lowpass(spec: str | float | Lowpass | None, approaches: Sequence[np.ndarray], fs: float,
-                   window: int) -> Lowpass:
+                   window: int, *, noise: float | None = None) -> Lowpass:
     """The :class:`Lowpass` for a run: ``spec`` ``"none"``, a cut-off in Hz, a :class:`Lowpass` (used as it
     is), or ``"auto"``: Winter's residual analysis over (at most :data:`RESIDUAL_TRIALS` of) the trials'
     approach positions, filtering at its cut-off only when the noise it finds, differentiated over
-    ``window`` samples, exceeds :data:`SPEED_NOISE_LIMIT` (module docstring)."""
+    ``window`` samples, exceeds :data:`SPEED_NOISE_LIMIT` (module docstring). ``noise``: the
+    :func:`rest_noise` of ``approaches`` when the caller computed it (then ``approaches`` must hold only
+    approaches of at least 4 samples and may be a lazy sequence: only the residual analysis reads it)."""
     if isinstance(spec, Lowpass):
         return spec
     spec = parse_lowpass(spec)
@@ -258,15 +270,15 @@ def choose_lowpass(spec: str | float | Lowpass | None, approaches: Sequence[np.n
             raise ValueError(f"a low-pass cut-off of {spec:g} Hz is too high for recordings sampled at {fs:g} Hz "
                              f"(at most {max_cutoff(fs):.3g} Hz for the zero-lag filter)")
         return Lowpass(float(spec), "given", fs=fs if np.isfinite(fs) else None)
-    pick = [a for a in approaches if len(a) >= 4]
-    if not pick or not np.isfinite(fs):
+    pick = [a for a in approaches if len(a) >= 4] if noise is None else approaches
+    if not len(pick) or not np.isfinite(fs):
         return Lowpass(None, "auto: not needed (no trial to estimate the noise from)")
-    noise = rest_noise(pick, fs)
+    noise = rest_noise(pick, fs) if noise is None else noise
     sn = speed_noise(noise, fs, window)
     if sn <= SPEED_NOISE_LIMIT:
         return Lowpass(None, "auto: not needed", noise_m=noise, speed_noise=sn)
     step = max(1, len(pick) // RESIDUAL_TRIALS)
-    ra = residual_analysis(pick[::step][:RESIDUAL_TRIALS], fs)
+    ra = residual_analysis([pick[i] for i in range(0, len(pick), step)[:RESIDUAL_TRIALS]], fs)
     if ra.cutoff_hz is None:  # the residual never falls to the noise line: filter at the highest cut-off scanned
         return Lowpass(float(ra.cutoffs[-1]), "winter residual analysis (no crossing: highest cut-off)",
                        noise_m=noise, speed_noise=sn, fs=fs)

@@ -32,6 +32,8 @@ from .robots import RobotSetup, get_robot, qd_limits_vector
 from .sensitivity import SparcSensitivity, sparc_sensitivity
 from .smoothness import DEFAULT_AMP_TH, DEFAULT_FC, DEFAULT_PADLEVEL
 from .transfer import TransferResult, transfer
+from .trialtable import TRIALS_FILE, in_json, trials_block, trials_section, write_trials  # noqa: F401
+from .trialtable import plain as _plain
 
 #: The book's synthetic cohort (default input), shipped with skilllib (:mod:`skilllib.datasets`).
 DEFAULT_DATA = cohort_path()
@@ -70,17 +72,6 @@ class PipelineRun:
     assessments: list[Assessment] = field(default_factory=list)
 
 
-def _plain(v: Any) -> Any:
-    """A JSON-ready scalar: numpy types unwrapped, NaN/inf and pandas NA as None."""
-    if v is None or v is pd.NA:
-        return None
-    if isinstance(v, np.generic):
-        v = v.item()
-    if isinstance(v, float) and not math.isfinite(v):
-        return None
-    return v
-
-
 def _is_shipped_cohort(given: Any) -> bool:
     """Whether the run's data are the book's synthetic cohort (its figures say so)."""
     if given is None:
@@ -99,19 +90,6 @@ def _display_path(given: Any) -> str:
     if isinstance(given, (str, Path)):
         return str(given)
     return getattr(given, "source", "<DataFrame>")
-
-
-def trials_section(features: pd.DataFrame) -> list[dict[str, Any]]:
-    """One results.json entry per input trial: ids, status, reason and features (null when invalid)."""
-    cols = ["participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
-            "sparc_band_end_hz", "sparc_capped", "ldlj", "resampled"]
-    out = []
-    for rec in features[cols].to_dict(orient="records"):
-        entry = {c: _plain(rec[c]) for c in cols}
-        if entry["status"] == "selected":
-            entry["reason"] = None
-        out.append(entry)
-    return out
 
 
 def choose_k(requested: int, sweep: pt.SilhouetteSweep) -> tuple[int, str | None]:
@@ -261,6 +239,8 @@ def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | P
                      random_state=random_state, params=params, variants=variants, lowpass=filt, progress=progress)
     if out is not None:
         with output_folder(out) as folder:
+            if not in_json(result.features):
+                write_trials(result.features, folder)
             write_json_atomic(result.results, folder / "results.json")
             if write_figures:
                 result.results["figures"] = _write_figures(result, folder, setup.robot)
@@ -283,7 +263,7 @@ def compute(recordings: Recordings, data: Any, *, setup: RobotSetup, limits: np.
         "sparc_params": {"fc": params["fc"], "amp_th": params["amp_th"], "padlevel": int(params["padlevel"])},
         "filter": lowpass.to_dict(),
         "contact_speed_window": list(CONTACT_WINDOW),
-        "trials": trials_section(features),
+        **trials_block(features),
         "n_selected": len(selected),
     }
     result = PipelineRun(results=results, recordings=recordings, features=features)
