@@ -122,6 +122,12 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--sensitivity", type=_setting, nargs="+", metavar="SETTING",
                    help="compare the run with other SPARC settings, each like fc=10 or fc=10,amp_th=0.1 "
                         "(results.json sparc_sensitivity; chapter 3)")
+    g = r.add_argument_group("large corpora on a Dask cluster (README: At scale)")
+    g.add_argument("--workers", type=int, metavar="N",
+                   help="compute the features of --data, a folder of Parquet files, on a local Dask cluster of N "
+                        "worker processes")
+    g.add_argument("--scheduler", metavar="ADDRESS",
+                   help="the same on a running Dask cluster (e.g. tcp://10.0.0.5:8786)")
     r.add_argument("--no-figures", action="store_true", help="write results.json only")
     r.add_argument("--quiet", action="store_true", help="no progress bars (they are shown only on a terminal)")
     r.add_argument("--debug", action="store_true", help="show the traceback of an unexpected error")
@@ -155,7 +161,8 @@ def _run(args: argparse.Namespace) -> int:
                      qdd_max=one_or_all(args.qdd_max), tau_max=one_or_all(args.tau_max), scaling=args.scaling,
                      random_state=args.seed, fc=args.fc, amp_th=args.amp_th, padlevel=args.padlevel,
                      sensitivity=args.sensitivity, lowpass=args.lowpass, read_options=read_options,
-                     progress=progress, write_figures=not args.no_figures)
+                     progress=progress, write_figures=not args.no_figures, workers=args.workers,
+                     scheduler=args.scheduler)
     except (DataFormatError, OptionError, OutputError, OSError) as e:  # the user's file, options or folder
         if args.debug:
             raise

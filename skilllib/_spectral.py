@@ -106,9 +106,10 @@ def _arc_length(A: np.ndarray, peak: np.ndarray, first: np.ndarray, last: np.nda
     The discrete SPARC integral (chapter 1, eq-sparc-sum): sum_k sqrt(du**2 + dMf_k**2), u = (f - f_first) /
     (f_last - f_first); the bins are equally spaced, so du = 1 / (last - first). Computed as
     sum_k sqrt((peak du)**2 + dA_k**2) / peak. A band of one bin has an empty sum (0), as in the
-    authors' code. ``A`` needs the columns up to max(last)."""
+    authors' code. ``A``: the bins up to fc (at least up to max(last)); every row is summed over all of its
+    columns (outside the band with weight zero), so its value depends on its own samples only."""
     n = last - first
-    k_end = int(last.max()) + 1
+    k_end = A.shape[1]  # all columns given, so that a row's sum does not depend on the other rows' bands
     terms = A[:, 1:k_end] - A[:, : k_end - 1]
     terms *= terms
     terms += (peak / np.maximum(n, 1))[:, None] ** 2
@@ -181,9 +182,10 @@ def _power(P: np.ndarray, n_fft: int, k: int, signed: np.ndarray) -> tuple[np.nd
         even = P[:, : C.shape[0]] + R[:, : C.shape[0]]
         if L % 2:
             even[:, h] = P[:, h]  # the centre sample, m = 0, counted once
-        A2 = np.square(even @ C)
+        # einsum's own loops, not BLAS: BLAS rounds a row differently with the number of rows beside it
+        A2 = np.square(np.einsum("rj,jk->rk", even, C))
         if h:
-            A2 += np.square((P[:, :h] - R[:, :h]) @ S)
+            A2 += np.square(np.einsum("rj,jk->rk", P[:, :h] - R[:, :h], S))
         peak2 = A2[:, 0].copy()  # for v >= 0 the DC bin is the maximum
         if signed.any():
             X = np.fft.rfft(P[signed], n_fft, axis=1)
@@ -212,9 +214,11 @@ def _sparc_block(flat: np.ndarray, lengths: np.ndarray, start: int, fs: float, f
         raise ValueError(f"speeds[{start + zero[0]}] is zero everywhere: no movement, no spectrum to normalise")
     signed = np.minimum.reduceat(flat[:-1], offsets) < 0
     th2 = amp_th ** 2 if amp_th > 0 else -np.inf
-    for n_fft in map(int, np.unique(n_ffts)):
-        group = np.flatnonzero(n_ffts == n_fft)
-        L = int(min(lengths[group].max(), n_fft))  # np.fft.fft(v, nfft) crops when nfft < N
+    # grouped by nfft and length: a profile's value then depends on its own samples only, not on which
+    # other profiles share its batch (the partitions of skilllib.partitions give the in-memory values)
+    for n_fft, length in map(tuple, np.unique(np.column_stack([n_ffts, lengths]), axis=0).tolist()):
+        group = np.flatnonzero((n_ffts == n_fft) & (lengths == length))
+        L = int(min(length, n_fft))  # np.fft.fft(v, nfft) crops when nfft < N
         col = np.arange(L)
         f = frequencies(n_fft, fs)
         k = _n_kept(f, fc)
@@ -233,7 +237,7 @@ def _sparc_block(flat: np.ndarray, lengths: np.ndarray, start: int, fs: float, f
                 raise ValueError(f"speeds[{start + rows[j]}] is zero over its first nfft = {n_fft} samples: "
                                  "no spectrum to normalise" if peak2[j] == 0 else f"speeds[{start + rows[j]}]: "
                                  f"no spectral magnitude at or above amp_th = {amp_th} up to fc = {fc} Hz")
-            A = np.sqrt(A2[:, : last.max() + 1])
+            A = np.sqrt(A2[:, :k])
             out[rows, 0] = -_arc_length(A, np.sqrt(peak2), first, last) + 0.0
             if bands:
                 out[rows, 1] = f[last]

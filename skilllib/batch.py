@@ -158,11 +158,11 @@ def _ldlj_by_length(out: dict[str, np.ndarray], seg_speed: dict[int, np.ndarray]
         out["ldlj"][trials] = smoothness.ldlj_rows(np.stack([seg_speed[i] for i in trials]), fs)
 
 
-def rest_noise_many(pos: np.ndarray, runs: Runs, approach_len: np.ndarray, which: np.ndarray, fs: float,
-                    separate: Mapping[int, np.ndarray] | None = None) -> float:
-    """:func:`skilllib.filtering.rest_noise` (m) of the approaches of the ``which`` trials: the first
-    ``approach_len[i]`` rows of run ``i`` of ``pos`` (R, 3) m, or ``separate[i]`` (the approach's
-    positions, for resampled trials). Same value as rest_noise over the list of approaches."""
+def rest_noise_estimates(pos: np.ndarray, runs: Runs, approach_len: np.ndarray, which: np.ndarray, fs: float,
+                         separate: Mapping[int, np.ndarray] | None = None) -> np.ndarray:
+    """The per-trial estimates (m) whose median is :func:`skilllib.filtering.rest_noise`, of the
+    approaches of the ``which`` trials long enough for it: the first ``approach_len[i]`` rows of run
+    ``i`` of ``pos`` (R, 3) m, or ``separate[i]`` (the approach's positions, for resampled trials)."""
     n = rest_samples(fs)
     separate = dict(separate or {})
     use = np.asarray(which, bool) & (approach_len >= n)
@@ -171,4 +171,12 @@ def rest_noise_many(pos: np.ndarray, runs: Runs, approach_len: np.ndarray, which
            for trials, rows in runs.blocks(use, length=np.full(len(runs), n))]
     est += [np.array([np.median(np.abs(np.diff(a[:n], 4, axis=0))) / REST_NOISE_SCALE])
             for a in separate.values() if len(a) >= n]
-    return float(np.median(np.concatenate(est))) if est else 0.0
+    return np.concatenate(est) if est else np.empty(0)
+
+
+def rest_noise_many(pos: np.ndarray, runs: Runs, approach_len: np.ndarray, which: np.ndarray, fs: float,
+                    separate: Mapping[int, np.ndarray] | None = None) -> float:
+    """:func:`skilllib.filtering.rest_noise` (m) of the approaches of the ``which`` trials (the median of
+    :func:`rest_noise_estimates`; 0 when no approach is long enough): the same value."""
+    est = rest_noise_estimates(pos, runs, approach_len, which, fs, separate)
+    return float(np.median(est)) if est.size else 0.0

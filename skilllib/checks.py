@@ -1,4 +1,5 @@
-"""The checks of every trial's samples, for many trials at once (used by :mod:`skilllib.data`).
+"""The checks of every trial's samples, for many trials at once, and of a corpus's sampling rate and
+units (used by :mod:`skilllib.data` and :mod:`skilllib.partitions`).
 
 :func:`trial_problem` is the definition, one trial at a time: the reason why its samples are unusable.
 :func:`trial_problems` finds the trials with a problem by flags over the flat arrays and asks
@@ -18,10 +19,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
+import pandas as pd
+
+from . import timing
+from .csvtable import DataFormatError
 from .ragged import Runs
-from .timing import TRIM, regular_mean_interval
+from .timing import MIN_RATE_HZ, MIXED_FRACTION, RATE_TOLERANCE, TRIM, regular_mean_interval
 
 MIN_SAMPLES = 5  #: fewer samples than this make a trial invalid
+MAX_RANGE_M = 2.0  #: a trial spanning more than this (m) has wrong units or a glitch (device: 0.38 m)
+MAX_TYPICAL_SPEED = 20.0  #: m/s; a typical (median over trials of the 95th percentile) speed above it: wrong units
 POSITION_COLUMNS = ("x", "y", "z")
 
 
@@ -112,3 +119,59 @@ def trial_stats(t: np.ndarray, pos: np.ndarray, runs: Runs, which: np.ndarray) -
         out["step95"][trials] = np.percentile(np.linalg.norm(np.diff(p, axis=1), axis=2), 95, axis=1)
         out["d_min"][trials], out["d_max"][trials] = d.min(axis=1), d.max(axis=1)
     return TrialStats(**out)
+
+
+def corpus_rate(source: str, med_dt: np.ndarray, mean_dt: np.ndarray) -> tuple[float, float]:
+    """``(ref, dt)`` in s of a corpus from its usable trials' median and regular mean intervals (the
+    rest NaN): the median of the medians and the file's interval; raises DataFormatError for time stamps
+    not in seconds and for mixed rates (see :mod:`skilllib.timing`)."""
+    ok = ~np.isnan(med_dt)
+    ref = float(np.median(med_dt[ok]))
+    if ref > 1 / MIN_RATE_HZ:
+        raise DataFormatError(f"{source}: {timing.time_unit_advice(ref)}")
+    off = np.abs(med_dt / ref - 1) > RATE_TOLERANCE  # NaN compares False
+    if off.sum() > MIXED_FRACTION * ok.sum():
+        rates = pd.Series(np.round(1 / mean_dt[ok], 1)).value_counts()
+        desc = ", ".join(f"{n} trials at {hz:g} Hz" for hz, n in rates.head(4).items())
+        raise DataFormatError(f"{source}: mixed sampling rates ({desc}); split the file by rate or "
+                              f"resample every trial to one rate")
+    return ref, float(np.median(mean_dt[ok & ~off]))
+
+
+def _check_rates(source: str, stats: checks.TrialStats, reasons: list[str],
+                 rate: tuple[float, float] | None = None) -> float:
+    """Time units and mixed rates (errors, unless ``rate`` is given), single off-rate trials (invalid);
+    returns the sampling interval in s. ``stats``: NaN for the trials not usable."""
+    med_dt, mean_dt = stats.med_dt, stats.mean_dt
+    ref, dt = corpus_rate(source, med_dt, mean_dt) if rate is None else rate
+    off = np.abs(med_dt / ref - 1) > RATE_TOLERANCE  # NaN compares False
+    for i in np.flatnonzero(off):
+        reasons[i] = (f"sampled at {1 / mean_dt[i]:.1f} Hz, the file at {1 / dt:.1f} Hz "
+                      f"(mean interval {mean_dt[i]:.4f} s vs {dt:.4f} s)")
+    return dt
+
+
+def _check_units(source: str, stats: checks.TrialStats, reasons: list[str], dt: float,
+                 corpus_checked: bool = False) -> None:
+    """Positions in millimetres (or centimetres) raise (unless ``corpus_checked``: the caller checked the
+    whole corpus, :func:`check_corpus_units`); a single trial with a huge span is invalid."""
+    idx = np.array([i for i in range(len(reasons)) if not reasons[i]], dtype=np.int64)
+    if not idx.size:
+        return
+    span = stats.span[idx]
+    if not corpus_checked:
+        check_corpus_units(source, span, stats.step95[idx] / dt)
+    for j, i in enumerate(idx):
+        if span[j] > MAX_RANGE_M:
+            reasons[i] = f"positions span {span[j]:.3g} m (more than {MAX_RANGE_M:g} m): a glitch or wrong units"
+
+
+def check_corpus_units(source: str, span: np.ndarray, speed95: np.ndarray) -> None:
+    """DataFormatError when the typical trial (median over trials of the span, m, and of the 95th
+    percentile speed, m/s) says the positions are not in metres."""
+    if np.median(span) > MAX_RANGE_M or np.median(speed95) > MAX_TYPICAL_SPEED:
+        raise DataFormatError(
+            f"{source}: positions look like millimetres or centimetres, not metres (a typical trial spans "
+            f"{np.median(span):.3g} and moves at up to {np.median(speed95):.3g} per s; a hand-held device spans "
+            f"well under {MAX_RANGE_M:g} m): write x, y, z in metres (divide millimetres by 1000, centimetres by "
+            f"100), or give the unit: --units mm")

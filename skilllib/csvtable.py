@@ -129,36 +129,16 @@ def read_plain(path: str | Path, text_columns: tuple[str, ...], number_columns: 
                                    null_values=sorted(na_text), strings_can_be_null=False,
                                    quoted_strings_can_be_null=False)
     n_rows = _count_lines(path) - 1
-    numbers = {c: np.empty(n_rows) for c in number_columns}
-    xyz = [c for c in number_columns if c in ("x", "y", "z")]
-    if len(xyz) == 3:  # the positions as columns of one (R, 3) array, which the validation uses as it is
-        pos = np.empty((n_rows, 3))
-        numbers.update({c: pos[:, j] for j, c in enumerate(xyz)})
-    texts: dict[str, list] = {c: [] for c in text_columns}
-    done = 0
-    try:  # batch by batch into the arrays: the parsed numbers are never held twice
+    from .columnar import frame_from_batches
+
+    try:
         with pacsv.open_csv(path, read_options=pacsv.ReadOptions(block_size=1 << 23),
                             parse_options=pacsv.ParseOptions(newlines_in_values=False),
                             convert_options=convert) as reader:
-            for batch in reader:
-                k = batch.num_rows
-                if done + k > n_rows:
-                    return None
-                for c in number_columns:
-                    numbers[c][done:done + k] = batch.column(c).to_numpy(zero_copy_only=False)
-                for c in text_columns:
-                    texts[c].append(batch.column(c))
-                done += k
+            # None when the rows are not the lines: a blank line (pyarrow skips it) would shift line numbers
+            return frame_from_batches(reader, n_rows, text_columns, number_columns)
     except (pa.ArrowInvalid, pa.ArrowTypeError, UnicodeDecodeError, OSError):
         return None
-    if done != n_rows:  # a blank line (pyarrow skips it): line numbers would shift
-        return None
-    out = {c: pd.Series(pa.chunked_array(v, pa.string()).combine_chunks(), dtype=pd.ArrowDtype(pa.string()))
-           for c, v in texts.items()}
-    del texts
-    out.update(numbers)
-    release_arrow_memory()  # the parser's buffers
-    return pd.DataFrame(out, copy=False)
 
 
 def release_arrow_memory() -> None:

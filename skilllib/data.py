@@ -46,7 +46,9 @@ import numpy as np
 import pandas as pd
 
 from . import checks, timing
-from .checks import MIN_SAMPLES  # noqa: F401  (re-exported)
+from .columnar import is_parquet, read_parquet
+from .checks import (MAX_RANGE_M, MAX_TYPICAL_SPEED, MIN_SAMPLES,  # noqa: F401  (re-exported)
+                     _check_rates, _check_units, check_corpus_units, corpus_rate)
 from .ragged import Runs
 from .csvtable import (MAX_QUOTE, DataFormatError, quote, read_plain, read_table, record_lines,  # noqa: F401
                        release_arrow_memory)  # noqa: F401  (re-exported)
@@ -55,8 +57,6 @@ from .timing import MIN_RATE_HZ, MIXED_FRACTION, RATE_TOLERANCE  # noqa: F401  (
 COLUMNS = ("participant", "trial", "t", "x", "y", "z", "contact")
 ID_COLUMNS = ("participant", "trial")
 POSITION_COLUMNS = ("x", "y", "z")
-MAX_RANGE_M = 2.0  #: a trial spanning more than this (m) has wrong units or a glitch (device: 0.38 m)
-MAX_TYPICAL_SPEED = 20.0  #: m/s; a typical (median over trials of the 95th percentile) speed above it: wrong units
 T_DECIMALS, POS_DECIMALS = 4, 5  #: writer's rounding: 0.1 ms and 0.01 mm
 #: Cells of the numeric columns read as missing (NaN), as pandas reads them by default.
 NA_TEXT = frozenset({"", "NA", "N/A", "n/a", "NaN", "nan", "-nan", "-NaN", "NULL", "null", "None", "#N/A"})
@@ -232,11 +232,16 @@ def _ids(df: pd.DataFrame, source: str, loc: Callable[[int], str]) -> list[tuple
 
 
 def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, lines: np.ndarray | None = None,
-                          places: np.ndarray | None = None) -> Recordings:
+                          places: np.ndarray | None = None, place: Callable[[int], str] | None = None,
+                          rate: tuple[float, float] | None = None) -> Recordings:
     """Validate a long table into :class:`Recordings`; see :func:`read_recordings`. ``lines``: the
     physical file line of each row (as :func:`read_table` gives); ``places``: a text per row naming where
-    it came from (``"P01/3.c3d, frame 12"``, for tables read from several files); else messages name
-    0-based rows."""
+    it came from (``"P01/3.c3d, frame 12"``, for tables read from several files); ``place``: the same as a
+    function of the row (:func:`skilllib.columnar.read_parquet`); else messages name 0-based rows.
+    ``rate``: ``(ref, dt)`` in s, the median of the trials' median intervals and the sampling interval of
+    a whole corpus this table is a part of (:mod:`skilllib.partitions`): trials are judged against them,
+    and the corpus-wide errors (mixed rates, units) are left to the caller; ``(nan, nan)``: no rate is
+    decided (fs NaN). The per-trial statistics are kept in ``_cache["stats"]``."""
     if not isinstance(df, pd.DataFrame):
         raise DataFormatError(f"{source}: expected a pandas DataFrame, got {type(df).__name__}")
     df = _check_columns(df, source)
@@ -255,6 +260,8 @@ def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, line
         return int(where[r])
 
     def loc(r: int) -> str:
+        if place is not None:
+            return place(int(kept[r]))
         if places is not None:
             return str(places[kept[r]])
         return f"line {line(r)}" if lines is not None else f"row {line(r)}"
@@ -281,11 +288,14 @@ def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, line
     resampled: dict[tuple[str, str], Trial] = {}
     fs = np.nan
     usable = np.array([not r for r in reasons], dtype=bool)
+    cache: dict = {"arrays": (t_all, pos_all, c_all == 1)}
     if usable.any():
         runs = Runs(np.array([r[0] for r in rows], dtype=np.int64), counts.astype(np.int64))
         stats = checks.trial_stats(t_all, pos_all, runs, usable)
-        dt = _check_rates(source, stats, reasons)
-        _check_units(source, stats, reasons, dt)
+        cache["stats"] = stats
+    if usable.any() and (rate is None or np.isfinite(rate[1])):
+        dt = _check_rates(source, stats, reasons, rate)
+        _check_units(source, stats, reasons, dt, corpus_checked=rate is not None)
         dev = np.maximum(np.abs(stats.d_min / dt - 1), np.abs(stats.d_max / dt - 1))  # NaN: not usable
         for i in np.flatnonzero(usable & ~(dev <= timing.JITTER_TOLERANCE)):
             if reasons[i]:
@@ -306,7 +316,7 @@ def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, line
         "n_samples": counts, "first_line": [line(r[0]) for r in rows],
         "status": ["invalid" if r else "ok" for r in reasons], "reason": reasons, "timing": timings})
     return Recordings(frame=frame, trials=trials, fs=fs, source=source, _rows=dict(zip(keys, rows)),
-                      _resampled=resampled, _cache={"arrays": (t_all, pos_all, c_all == 1)})
+                      _resampled=resampled, _cache=cache)
 
 
 def _trial_numbers(p_codes: np.ndarray, t_codes: np.ndarray, p_names: np.ndarray,
@@ -334,47 +344,11 @@ def _positions(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
     return np.column_stack([x, y, z])
 
 
-def _check_rates(source: str, stats: checks.TrialStats, reasons: list[str]) -> float:
-    """Time units and mixed rates (errors), single off-rate trials (invalid); returns the file's
-    sampling interval in s (see :mod:`skilllib.timing`). ``stats``: NaN for the trials not usable."""
-    med_dt, mean_dt = stats.med_dt, stats.mean_dt
-    ok = ~np.isnan(med_dt)
-    ref = float(np.median(med_dt[ok]))
-    if ref > 1 / MIN_RATE_HZ:
-        raise DataFormatError(f"{source}: {timing.time_unit_advice(ref)}")
-    off = np.abs(med_dt / ref - 1) > RATE_TOLERANCE  # NaN compares False
-    if off.sum() > MIXED_FRACTION * ok.sum():
-        rates = pd.Series(np.round(1 / mean_dt[ok], 1)).value_counts()
-        desc = ", ".join(f"{n} trials at {hz:g} Hz" for hz, n in rates.head(4).items())
-        raise DataFormatError(f"{source}: mixed sampling rates ({desc}); split the file by rate or "
-                              f"resample every trial to one rate")
-    dt = float(np.median(mean_dt[ok & ~off]))
-    for i in np.flatnonzero(off):
-        reasons[i] = (f"sampled at {1 / mean_dt[i]:.1f} Hz, the file at {1 / dt:.1f} Hz "
-                      f"(mean interval {mean_dt[i]:.4f} s vs {dt:.4f} s)")
-    return dt
-
-
-def _check_units(source: str, stats: checks.TrialStats, reasons: list[str], dt: float) -> None:
-    """Positions in millimetres (or centimetres) raise; a single trial with a huge span is invalid."""
-    idx = np.array([i for i in range(len(reasons)) if not reasons[i]], dtype=np.int64)
-    if not idx.size:
-        return
-    span = stats.span[idx]
-    speed95 = stats.step95[idx] / dt
-    if np.median(span) > MAX_RANGE_M or np.median(speed95) > MAX_TYPICAL_SPEED:
-        raise DataFormatError(
-            f"{source}: positions look like millimetres or centimetres, not metres (a typical trial spans "
-            f"{np.median(span):.3g} and moves at up to {np.median(speed95):.3g} per s; a hand-held device spans "
-            f"well under {MAX_RANGE_M:g} m): write x, y, z in metres (divide millimetres by 1000, centimetres by "
-            f"100), or give the unit: --units mm")
-    for j, i in enumerate(idx):
-        if span[j] > MAX_RANGE_M:
-            reasons[i] = f"positions span {span[j]:.3g} m (more than {MAX_RANGE_M:g} m): a glitch or wrong units"
-
-
 def read_recordings(path: str | Path) -> Recordings:
-    """Read and validate a recordings CSV (format: module docstring; compressed files as pandas infers).
+    """Read and validate a recordings CSV (format: module docstring; compressed files as pandas infers),
+    or a Parquet file or folder of Parquet files (:mod:`skilllib.columnar`). A plain CSV file (one record
+    per line, no blank line, not compressed) is read by pyarrow's CSV reader, any other by pandas' (same
+    result, tested; line numbers in messages count physical lines either way).
 
     Raises :class:`DataFormatError` naming the file (and line, column) when the file is missing or
     empty, a required column is missing, a cell is not a number, an id is empty, ``contact`` is not 0/1,
@@ -385,6 +359,12 @@ def read_recordings(path: str | Path) -> Recordings:
     For C3D and TRC files, folders and other column names see :func:`skilllib.formats.load_recordings`.
     """
     path = Path(path)
+    if is_parquet(path):
+        frame, where = read_parquet(path, COLUMNS, natural_key)
+        rec = recordings_from_frame(frame, str(path), place=where)
+        del frame
+        release_arrow_memory()
+        return rec
     fast = read_plain(path, ID_COLUMNS, ("t", *POSITION_COLUMNS, "contact"), NA_TEXT)
     if fast is not None:  # a plain file: pyarrow's reader; record k is line k + 2
         rec = recordings_from_frame(fast, str(path), lines=np.arange(2, len(fast) + 2))

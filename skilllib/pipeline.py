@@ -22,6 +22,7 @@ import pandas as pd
 
 from . import __version__
 from . import prototypes as pt
+from .columnar import is_parquet
 from .data import Recordings, read_recordings, recordings_from_frame
 from .datasets import cohort_path
 from .feasibility import Assessment, assess, resolve_limits, transfer_block
@@ -175,7 +176,7 @@ def load_input(data: str | Path | pd.DataFrame | Recordings | None = None,
         if isinstance(data, pd.DataFrame):
             return recordings_from_frame(data)
         path = Path(data)
-        if not path.is_dir() and path.suffix.lower() not in (".c3d", ".trc"):
+        if is_parquet(path) or not path.is_dir() and path.suffix.lower() not in (".c3d", ".trc"):
             return read_recordings(path)
     from . import formats  # C3D, TRC, folders, other column names, units and axes
 
@@ -188,7 +189,8 @@ def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | P
         scaling: str = "raw", random_state: int = 0, fc: float = DEFAULT_FC, amp_th: float = DEFAULT_AMP_TH,
         padlevel: int = DEFAULT_PADLEVEL, sensitivity: Sequence[Mapping[str, float]] | None = None,
         lowpass: str | float | Lowpass | None = "auto", read_options: Mapping[str, Any] | None = None,
-        progress: Progress = _no_progress, write_figures: bool = True) -> PipelineRun:
+        progress: Progress = _no_progress, write_figures: bool = True, workers: int | None = None,
+        scheduler: str | None = None) -> PipelineRun:
     """Run the pipeline on ``data`` (default: the book's synthetic cohort) and write ``out``.
 
     ``data``: a path (CSV, compressed CSV, C3D, TRC, or a folder of them), a pandas DataFrame in the
@@ -204,7 +206,9 @@ def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | P
     (:func:`skilllib.sensitivity.sparc_sensitivity`, results.json ``sparc_sensitivity``); ``lowpass``: the
     positions' low-pass filter, ``"auto"`` (default: only when the noise needs it), ``"none"`` or a cut-off
     in Hz (:mod:`skilllib.filtering`; results.json ``filter``); ``progress(items, description)`` wraps the
-    long loops (e.g. tqdm).
+    long loops (e.g. tqdm); ``workers`` / ``scheduler``: compute the features of a folder of Parquet files
+    on a Dask cluster, a LocalCluster of that many worker processes or the running scheduler at that
+    address (:mod:`skilllib.partitions`; the same feature table as in memory).
 
     Raises :class:`OptionError` for a bad option (before reading the data),
     :class:`skilllib.data.DataFormatError` for a file that cannot be read and
@@ -228,15 +232,27 @@ def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | P
         out = Path(out)
         if out.exists() and not out.is_dir():
             raise OptionError(f"{out}: exists and is not a folder (--out names the folder for the results)")
-    recordings = load_input(data, **dict(read_options or {}))
+    features = None
+    if workers or scheduler:
+        from .partitions import cluster_features
+
+        try:
+            recordings, features = cluster_features(data, workers, scheduler, lowpass=lowpass, sparc_params=params,
+                                                    read_options=read_options, variants=variants)
+        except ValueError as e:  # an option the cluster path does not take
+            raise OptionError(str(e)) from None
+        filt = features.attrs["lowpass"]
+    else:
+        recordings = load_input(data, **dict(read_options or {}))
     for p in (params, *variants):
         _check_nyquist(p, recordings.fs)
     try:
-        filt = run_lowpass(recordings, lowpass)
+        filt = filt if features is not None else run_lowpass(recordings, lowpass)
     except ValueError as e:  # a cut-off too high for the sampling rate
         raise OptionError(str(e)) from None
     result = compute(recordings, data, setup=setup, limits=limits, dyn_limits=dyn_limits, k=k, scaling=scaling,
-                     random_state=random_state, params=params, variants=variants, lowpass=filt, progress=progress)
+                     random_state=random_state, params=params, variants=variants, lowpass=filt, progress=progress,
+                     features=features)
     if out is not None:
         with output_folder(out) as folder:
             if not in_json(result.features):
@@ -251,9 +267,11 @@ def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | P
 def compute(recordings: Recordings, data: Any, *, setup: RobotSetup, limits: np.ndarray, dyn_limits: Any,
             k: int, scaling: str,
             random_state: int, params: dict[str, float], variants: list[dict[str, float]], lowpass: Lowpass,
-            progress: Progress = _no_progress) -> PipelineRun:
-    """The pipeline's computation on validated ``recordings`` with checked options (see :func:`run`)."""
-    features = trial_features(recordings, sparc_params=params, lowpass=lowpass, progress=progress)
+            progress: Progress = _no_progress, features: pd.DataFrame | None = None) -> PipelineRun:
+    """The pipeline's computation on validated ``recordings`` with checked options (see :func:`run`);
+    ``features``: their feature table when computed already (on a cluster)."""
+    if features is None:
+        features = trial_features(recordings, sparc_params=params, lowpass=lowpass, progress=progress)
     selected = select(features)
     results: dict[str, Any] = {
         "skilllib_version": __version__,
@@ -317,8 +335,9 @@ def compute(recordings: Recordings, data: Any, *, setup: RobotSetup, limits: np.
         results["scaling"] = scaling
         results["clusters"] = fit.to_dict()["clusters"]
         for c in progress(list(range(k_used)), "transfer"):
-            seg = segment(recordings, fit.prototypes.at[c, "participant"], fit.prototypes.at[c, "trial"],
-                          lowpass=lowpass)
+            p, tr = fit.prototypes.at[c, "participant"], fit.prototypes.at[c, "trial"]
+            seg = (segment(recordings, p, tr, lowpass=lowpass) if isinstance(recordings, Recordings) else
+                   recordings.segment(p, tr, lowpass=lowpass))
             result.profiles.append((seg.t - seg.t[0], seg.speed))
             result.transfers.append(transfer(setup.robot, seg.t - seg.t[0], seg.pos, seg.vel, q0=setup.q0,
                                              qd_limits=limits, cluster=c))
@@ -377,8 +396,9 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
 
     if (run_.features["status"] != "invalid").any():  # the data figures need at least one valid trial
         keep(fg.plot_feature_overview(run_.features, run_.results["sparc_params"]["amp_th"]), "features")
-        keep(fg.plot_trials_by_participant(run_.recordings, run_.features), "trials_by_participant")
         keep(fg.plot_participant_features(run_.features), "participant_features")
+    if (run_.features["status"] != "invalid").any() and isinstance(run_.recordings, Recordings):
+        keep(fg.plot_trials_by_participant(run_.recordings, run_.features), "trials_by_participant")
         keep(fg.plot_sparc_vs_length(run_.features, run_.recordings.fs, run_.results["sparc_params"]["amp_th"]),
              "sparc_vs_length")
     if run_.prototypes is not None:

@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from monalysa.quality.smoothness import log_dimensionless_jerk as ldlj_authors
 from monalysa.quality.smoothness import sparc as sparc_authors
 
-from skilllib import features
+from skilllib import kinematics, features
 from skilllib.data import recordings_from_frame
 from skilllib.features import (
     CONTACT_WINDOW, DIFF_SPAN_S, FEATURE_COLUMNS, MIN_SEGMENT_SAMPLES, ONSET_SPEED, SPARC_PARAMS,
@@ -323,7 +323,7 @@ def test_onset_speed_exactly_at_the_threshold_does_not_start_the_movement(monkey
     by a profile of exact speeds, since a derivative never lands exactly on 0.05. Catches ``>=``."""
     above = np.nextafter(ONSET_SPEED, np.inf)
     speeds = np.array([ONSET_SPEED, 0.0, ONSET_SPEED, ONSET_SPEED, above, 0.2, 0.4, 0.5, 0.5, 0.45, 0.4, 0.4])
-    monkeypatch.setattr(features, "velocity", lambda p, fs: np.column_stack([0 * speeds, -speeds, 0 * speeds]))
+    monkeypatch.setattr(kinematics, "velocity", lambda p, fs: np.column_stack([0 * speeds, -speeds, 0 * speeds]))
     n = len(speeds)
     contact = np.arange(n + 3) >= n
     seg = segment_arrays(np.arange(n + 3) / FS, np.zeros((n + 3, 3)), contact, FS)
