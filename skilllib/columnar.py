@@ -59,8 +59,9 @@ def frame_from_batches(batches: Iterable, n_rows: int, text_columns: tuple[str, 
         done += k
     if done != n_rows:
         return None
-    out = {c: pd.Series(pa.chunked_array(v).combine_chunks(), dtype=pd.ArrowDtype(v[0].type))
-           for c, v in kept.items() if v}
+    out = {c: pd.Series(pa.chunked_array(v).combine_chunks(), dtype=pd.ArrowDtype(v[0].type)) if v else
+           pd.Series([], dtype=object) for c, v in kept.items()}
+    del kept
     out.update(numbers)
     release_arrow_memory()
     return pd.DataFrame(out, copy=False)

@@ -129,6 +129,8 @@ def read_plain(path: str | Path, text_columns: tuple[str, ...], number_columns: 
                                    null_values=sorted(na_text), strings_can_be_null=False,
                                    quoted_strings_can_be_null=False)
     n_rows = _count_lines(path) - 1
+    if n_rows < 1:  # a header alone: read_table says so
+        return None
     from .columnar import frame_from_batches
 
     try:

@@ -211,13 +211,24 @@ def _id_text(v: Any) -> str:
     return _id(v)
 
 
+def _factorize(col: pd.Series) -> tuple[np.ndarray, np.ndarray]:
+    """``pd.factorize(col)`` (codes, -1 for missing; the distinct values in order of first appearance);
+    an Arrow-backed column is encoded by pyarrow with 32-bit codes, without 64-bit temporaries."""
+    if isinstance(col.dtype, pd.ArrowDtype):
+        import pyarrow.compute as pc
+
+        enc = pc.dictionary_encode(col.array._pa_array).combine_chunks()
+        return enc.indices.fill_null(-1).to_numpy(), np.asarray(enc.dictionary.to_pylist(), dtype=object)
+    return pd.factorize(col, use_na_sentinel=True)
+
+
 def _ids(df: pd.DataFrame, source: str, loc: Callable[[int], str]) -> list[tuple[np.ndarray, np.ndarray]]:
     """Participant and trial ids as text: per column ``(codes, names)``, the row's code into the distinct
     names (object array of str, order of first appearance). Each distinct cell is converted once
     (:func:`_id_text`), not each row. DataFormatError at the first empty id."""
     out = []
     for name in ID_COLUMNS:
-        raw_codes, uniques = pd.factorize(df[name], use_na_sentinel=True)
+        raw_codes, uniques = _factorize(df[name])
         text = np.array([_id_text(u) for u in np.asarray(uniques, dtype=object)] + [""], dtype=object)
         merged, names = pd.factorize(text)  # "01" and " 01" are one id; NA (code -1: the last entry) is ""
         codes = merged.astype(np.int32)[raw_codes]
@@ -231,7 +242,7 @@ def _ids(df: pd.DataFrame, source: str, loc: Callable[[int], str]) -> list[tuple
     return out
 
 
-def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, lines: np.ndarray | None = None,
+def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, lines: np.ndarray | range | None = None,
                           places: np.ndarray | None = None, place: Callable[[int], str] | None = None,
                           rate: tuple[float, float] | None = None) -> Recordings:
     """Validate a long table into :class:`Recordings`; see :func:`read_recordings`. ``lines``: the
@@ -249,12 +260,13 @@ def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, line
     for c in sorted(COLUMNS, key=lambda c: not pd.api.types.is_numeric_dtype(df[c])):  # cheap columns first
         if blank.any():
             blank[blank] = _blank(df[c][blank])
-    kept = np.flatnonzero(~blank)
+    kept = np.flatnonzero(~blank) if blank.any() else range(len(df))  # a range: no memory per row
     if blank.any():
         df = df.loc[~blank].reset_index(drop=True)
+    del blank
     if df.empty:
         raise DataFormatError(f"{source}: file is empty (a header but no data rows)")
-    where = lines[kept] if lines is not None else kept
+    where = kept if lines is None else lines if isinstance(kept, range) else lines[kept]
 
     def line(r: int) -> int:  # the physical file line (or 0-based frame row) of kept row r
         return int(where[r])
@@ -367,7 +379,7 @@ def read_recordings(path: str | Path) -> Recordings:
         return rec
     fast = read_plain(path, ID_COLUMNS, ("t", *POSITION_COLUMNS, "contact"), NA_TEXT)
     if fast is not None:  # a plain file: pyarrow's reader; record k is line k + 2
-        rec = recordings_from_frame(fast, str(path), lines=np.arange(2, len(fast) + 2))
+        rec = recordings_from_frame(fast, str(path), lines=range(2, len(fast) + 2))
         del fast
         release_arrow_memory()
         return rec

@@ -330,6 +330,13 @@ def compute(recordings: Recordings, data: Any, *, setup: RobotSetup, limits: np.
                 f"silhouette); valid k: {', '.join(map(str, valid)) or 'none'} (see silhouette_sweep.png, --k)")
         result.sweep, result.prototypes = sweep, fit
         results["silhouette"] = sweep.to_dict()
+        results["silhouette_estimate"] = est = sweep.estimate_dict()
+        if est["method"] == "subsample":
+            sd = max(v["sd"] for v in est["per_k"].values())
+            result.messages.append(
+                f"silhouettes estimated: {est['n_points']} selected trials > {est['exact_max']} (exact up to that); "
+                f"mean of {est['repeats']} stratified random subsamples of {est['sample_size']} per k, seeded by "
+                f"--seed (largest SD over the subsamples {sd:.3f}; silhouette_estimate)")
         results["silhouette_valid_k"] = sweep.valid_ks()
         results["k"] = k_used
         results["scaling"] = scaling

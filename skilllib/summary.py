@@ -34,7 +34,8 @@ def summary_lines(run_: PipelineRun) -> list[str]:
             lines.append(f"  commonest {status} reasons: {top}")
     if run_.prototypes is not None:
         fit = run_.prototypes
-        lines.append(f"k = {fit.k} clusters ({fit.scaling} features), average silhouette {fit.silhouette:.3f}")
+        how = "" if fit.silhouette_estimate is None else f" (estimate, SD {fit.silhouette_estimate.sd:.3f} over subsamples)"
+        lines.append(f"k = {fit.k} clusters ({fit.scaling} features), average silhouette {fit.silhouette:.3f}{how}")
         for c, (tr, a) in enumerate(zip(run_.transfers, run_.assessments)):
             p = {col: fit.prototypes.at[c, col] for col in fit.prototypes.columns}
             dyn = a.dynamics

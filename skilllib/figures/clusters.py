@@ -17,11 +17,16 @@ def _cluster_color(c: int) -> tuple[float, float, float]:
 
 def plot_silhouette_sweep(sweep: SilhouetteSweep, chosen_k: int | None = None) -> plt.Figure:
     """Average silhouette (Rousseeuw 1987) against k; filled markers = valid k (average > 0 and every
-    cluster has a trial above the average, as in scikit-learn's silhouette example), open = not valid."""
+    cluster has a trial above the average, as in scikit-learn's silhouette example), open = not valid.
+    Subsample estimates (more trials than ``SILHOUETTE_EXACT_MAX``) get bars of +- 1 SD over the repeats."""
     ks, scores = sweep.ks, sweep.scores
     valid = np.array([sweep.results[k].valid for k in ks])
     fig, ax = plt.subplots(figsize=(5.5, 3.4))
     ax.plot(ks, scores, color="0.6", lw=1, zorder=1)
+    est = [sweep.results[k].silhouette_estimate for k in ks]
+    if all(e is not None for e in est):
+        ax.errorbar(ks, scores, yerr=[e.sd for e in est], fmt="none", ecolor="0.4", lw=1, capsize=2, zorder=1,
+                    label=f"estimate: ± 1 SD over {est[0].repeats} subsamples of {est[0].sample_size} trials")
     ax.scatter(ks[valid], scores[valid], color="k", zorder=2, label="valid")
     ax.scatter(ks[~valid], scores[~valid], facecolor="white", edgecolor="k", zorder=2,
                label="not valid: a cluster lies wholly below the average")
@@ -37,8 +42,10 @@ def plot_silhouette_sweep(sweep: SilhouetteSweep, chosen_k: int | None = None) -
 
 def plot_silhouettes(result: PrototypeResult) -> plt.Figure:
     """Silhouette plot ("knife plot", as in scikit-learn's example) of one clustering: each cluster's
-    trial silhouettes sorted, the average as a dashed line; clusters marked * lie wholly below it."""
-    s, labels, avg = result.silhouette_samples, result.labels, result.silhouette
+    trial silhouettes sorted, the average as a dashed line; clusters marked * lie wholly below it. For a
+    subsample estimate (``result.silhouette_method == "subsample"``) the pooled subsamples' trials."""
+    s, labels, avg = result.silhouette_samples, result.silhouette_labels, result.silhouette
+    est = result.silhouette_estimate
     failing = set(result.failing_clusters())
     gap = max(2, len(s) // 60)
     fig, ax = plt.subplots(figsize=(5, 3 + 0.1 * result.k))
@@ -55,10 +62,12 @@ def plot_silhouettes(result: PrototypeResult) -> plt.Figure:
     ax.set_ylim(0, y0)
     ax.set_yticks([])
     ax.set_xlabel("silhouette coefficient")
-    ax.set_ylabel("trials, by cluster (0 = lowest PV)")
+    ax.set_ylabel("trials, by cluster (0 = lowest PV)" if est is None else
+                  f"sampled trials ({est.repeats} x {est.sample_size} of {est.n_points}), by cluster")
     note = "; * no trial above it" if failing else ""
+    how = "dashed" if est is None else f"dashed; estimate, SD {est.sd:.3f}"
     ax.set_title(f"k = {result.k} ({result.method}, {result.scaling} features): "
-                 f"average {avg:.3f} (dashed){note}", fontsize="small")
+                 f"average {avg:.3f} ({how}){note}", fontsize="small")
     return fig
 
 
