@@ -403,11 +403,13 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
 
     if (run_.features["status"] != "invalid").any():  # the data figures need at least one valid trial
         keep(fg.plot_feature_overview(run_.features, run_.results["sparc_params"]["amp_th"]), "features")
+        samples = isinstance(run_.recordings, Recordings)  # not on the cluster path: the samples stay there
+        if samples:
+            keep(fg.plot_trials_by_participant(run_.recordings, run_.features), "trials_by_participant")
         keep(fg.plot_participant_features(run_.features), "participant_features")
-    if (run_.features["status"] != "invalid").any() and isinstance(run_.recordings, Recordings):
-        keep(fg.plot_trials_by_participant(run_.recordings, run_.features), "trials_by_participant")
-        keep(fg.plot_sparc_vs_length(run_.features, run_.recordings.fs, run_.results["sparc_params"]["amp_th"]),
-             "sparc_vs_length")
+        if samples:
+            keep(fg.plot_sparc_vs_length(run_.features, run_.recordings.fs, run_.results["sparc_params"]["amp_th"]),
+                 "sparc_vs_length")
     if run_.prototypes is not None:
         keep(fg.plot_silhouette_sweep(run_.sweep, chosen_k=run_.prototypes.k), "silhouette_sweep")
         keep(fg.plot_silhouettes(run_.prototypes), "silhouettes_k")

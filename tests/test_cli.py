@@ -464,7 +464,8 @@ def test_default_run_writes_results_and_figures(tmp_path):
         assert p["time_scale"] >= 1
         assert not (p["feasible"] and p["time_scale"] > 1)
         assert p["feasible"] or p["time_scale"] > 1 or p["flags"]
-    assert set(res) == README_KEYS - {"sparc_sensitivity"}  # the schema table of README.md (sensitivity: an option)
+    # the schema table of README.md (sensitivity: an option; trials_file and trial_counts: above 10,000 trials)
+    assert set(res) == README_KEYS - {"sparc_sensitivity", "trials_file", "trial_counts"}
     assert not any("shrunk" in m or "needs more" in m for m in res["messages"])  # the cohort allows k = 6
     assert set(res["figures"]) == {f"{n}.{ext}" for n in FIGURES for ext in ("png", "svg")}
     for name in res["figures"]:

@@ -689,11 +689,14 @@ NO_READ_OPTIONS = {"columns": None, "units": None, "up_axis": None, "marker": No
 CLI_DEFAULTS = {"data": None, "k": pt.DEFAULT_K, "robot": "simple6", "qd_max": None, "qdd_max": None,
                 "tau_max": None, "scaling": "raw",
                 "random_state": 0, "fc": DEFAULT_FC, "amp_th": DEFAULT_AMP_TH, "padlevel": DEFAULT_PADLEVEL,
-                "sensitivity": None, "lowpass": "auto", "read_options": NO_READ_OPTIONS, "write_figures": True}
+                "sensitivity": None, "lowpass": "auto", "read_options": NO_READ_OPTIONS, "write_figures": True,
+                "workers": None, "scheduler": None}
 
 
 CLI_CASES = [
     ([], {}),
+    (["--workers", "3"], {"workers": 3}),
+    (["--scheduler", "tcp://10.0.0.5:8786"], {"scheduler": "tcp://10.0.0.5:8786"}),
     (["--data", "rec.csv"], {"data": "rec.csv"}),
     (["--k", "4"], {"k": 4}),
     (["--robot", "panda"], {"robot": "panda"}),
