@@ -8,7 +8,10 @@ per-trial features), :mod:`~skilllib.prototypes` (silhouettes, K-means prototype
 :mod:`~skilllib.workspace` and :mod:`~skilllib.ik` (reach and inverse kinematics),
 :mod:`~skilllib.dynamics`, :mod:`~skilllib.execution` and :mod:`~skilllib.feasibility` (accelerations,
 torques, every limit, time scaling, the executed motion),
-:mod:`~skilllib.figures` and :mod:`~skilllib.pipeline` (``python -m skilllib run``).
+:mod:`~skilllib.figures` and :mod:`~skilllib.pipeline` (``python -m skilllib run``); at scale
+:mod:`~skilllib.batch` (the features of many trials at once), :mod:`~skilllib.silhouette` (exact or
+estimated), :mod:`~skilllib.columnar` (Parquet), :mod:`~skilllib.trialtable` (trials.parquet) and
+:mod:`~skilllib.partitions` (a Dask cluster).
 
 Every name is loaded on first use (PEP 562), so that ``import skilllib`` and ``python -m skilllib
 --help`` do not pay for importing pandas, scikit-learn, roboticstoolbox or matplotlib.
@@ -35,7 +38,8 @@ _LAZY = {
 
 #: the submodules, importable as attributes (``skilllib.cohort``) after ``import skilllib``
 _SUBMODULES = {"smoothness", "cohort", "calibration", "data", "datasets", "duration", "features", "filtering",
-               "participants", "pipeline", "prototypes", "robots", "sensitivity", "transfer", "figures"}
+               "participants", "pipeline", "prototypes", "robots", "sensitivity", "transfer", "figures",
+               "batch", "checks", "columnar", "kinematics", "partitions", "ragged", "silhouette", "trialtable"}
 
 
 def __getattr__(name: str) -> Any:

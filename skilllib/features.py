@@ -147,6 +147,8 @@ def trial_features(recordings: Recordings | pd.DataFrame, *, sparc_params: Mappi
                    min_samples: int = MIN_SEGMENT_SAMPLES, lowpass: str | float | Lowpass | None = "auto",
                    progress: Callable[[Sequence[Any], str], Iterable[Any]] | None = None) -> pd.DataFrame:
     """One row per trial of ``recordings`` (all of them, in their order) with its features and status.
+    Computed for all trials at once (:mod:`skilllib.batch`), with the same values as the per-trial
+    :func:`segment_arrays`, :func:`skilllib.smoothness.ldlj` and :func:`skilllib.smoothness.sparc_bands`.
 
     Columns: ``participant, trial, status`` (``selected`` / ``excluded`` / ``invalid``), ``reason``
     (empty when selected), ``pv`` (m/s), ``contact_speed`` (m/s), ``duration`` (s), ``sparc``,

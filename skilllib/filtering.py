@@ -252,6 +252,12 @@ def parse_lowpass(value: str | float | None) -> str | float:
     return value
 
 
+def residual_trials(n: int) -> range:
+    """Which of ``n`` approaches the residual analysis of ``"auto"`` reads: at most :data:`RESIDUAL_TRIALS`,
+    evenly spaced from the first (deterministic)."""
+    return range(0, n, max(1, n // RESIDUAL_TRIALS))[:RESIDUAL_TRIALS]
+
+
 def choose_lowpass(spec: str | float | Lowpass | None, approaches: Sequence[np.ndarray], fs: float,
                    window: int, *, noise: float | None = None) -> Lowpass:
     """The :class:`Lowpass` for a run: ``spec`` ``"none"``, a cut-off in Hz, a :class:`Lowpass` (used as it
@@ -277,8 +283,7 @@ def choose_lowpass(spec: str | float | Lowpass | None, approaches: Sequence[np.n
     sn = speed_noise(noise, fs, window)
     if sn <= SPEED_NOISE_LIMIT:
         return Lowpass(None, "auto: not needed", noise_m=noise, speed_noise=sn)
-    step = max(1, len(pick) // RESIDUAL_TRIALS)
-    ra = residual_analysis([pick[i] for i in range(0, len(pick), step)[:RESIDUAL_TRIALS]], fs)
+    ra = residual_analysis([pick[i] for i in residual_trials(len(pick))], fs)
     if ra.cutoff_hz is None:  # the residual never falls to the noise line: filter at the highest cut-off scanned
         return Lowpass(float(ra.cutoffs[-1]), "winter residual analysis (no crossing: highest cut-off)",
                        noise_m=noise, speed_noise=sn, fs=fs)

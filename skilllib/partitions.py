@@ -38,9 +38,10 @@ from .checks import check_corpus_units, corpus_rate
 from .columnar import is_parquet, parquet_files, read_parquet
 from .data import COLUMNS, DataFormatError, Recordings, natural_key, recordings_from_frame
 from .features import trial_features
-from .filtering import Lowpass, choose_lowpass
+from .filtering import SPEED_NOISE_LIMIT, Lowpass, choose_lowpass, residual_trials, speed_noise
 from .kinematics import MIN_DIFF_WINDOW, diff_window
 from .ragged import first_true
+from .timing import RATE_TOLERANCE
 
 
 def _recordings(path: str, rate: tuple[float, float]) -> Recordings:
@@ -49,14 +50,13 @@ def _recordings(path: str, rate: tuple[float, float]) -> Recordings:
 
 
 def partition_rates(path: str) -> dict[str, Any]:
-    """Step 1 on a worker: the trials' ids and the statistics the corpus's rate and units come from."""
+    """Step 1 on a worker: the trials' ids and the statistics the corpus's rate and units come from
+    (NaN for trials with a problem of their own)."""
     rec = _recordings(path, (np.nan, np.nan))
     stats = rec._cache.get("stats")
-    n = len(rec)
-    pick = (lambda a: a) if stats is not None else (lambda a: np.full(n, np.nan))
-    return {"keys": rec.keys(), "med_dt": pick(getattr(stats, "med_dt", None)),
-            "mean_dt": pick(getattr(stats, "mean_dt", None)), "span": pick(getattr(stats, "span", None)),
-            "step95": pick(getattr(stats, "step95", None))}
+    none = np.full(len(rec), np.nan)
+    return {"keys": rec.keys(), **{k: none if stats is None else getattr(stats, k)
+                                   for k in ("med_dt", "mean_dt", "span", "step95")}}
 
 
 def partition_noise(path: str, rate: tuple[float, float]) -> dict[str, Any]:
@@ -80,17 +80,17 @@ def partition_noise(path: str, rate: tuple[float, float]) -> dict[str, Any]:
 
 
 def partition_approaches(path: str, rate: tuple[float, float], which: Sequence[int]) -> list[np.ndarray]:
-    """Step 2b on a worker: the approaches (m) of the partition's picked trials number ``which``."""
+    """Step 2b on a worker: the approaches (m) number ``which`` among the partition's picked trials (as
+    :func:`partition_noise` counts them), for the residual analysis."""
     rec = _recordings(path, rate)
-    ok = (rec.trials["status"] == "ok").to_numpy()
-    out = []
-    for i in np.flatnonzero(ok):
-        d = rec.trial(*rec.keys()[i])
+    picked = []
+    for i in np.flatnonzero((rec.trials["status"] == "ok").to_numpy()):
+        d = rec.trial(*rec.keys()[i])  # resampled trials as resampled, as in memory
         hits = np.flatnonzero(d.contact)
         a = d.pos[:int(hits[0])] if hits.size else d.pos
         if len(a) >= 4:
-            out.append(a)
-    return [out[j] for j in which]
+            picked.append(a)
+    return [picked[j] for j in which]
 
 
 def partition_features(path: str, rate: tuple[float, float], lowpass: Lowpass,
@@ -129,7 +129,7 @@ def client_for(workers: int | None = None, scheduler: str | None = None):
     if scheduler:
         return Client(scheduler)
     cluster = LocalCluster(n_workers=int(workers or 1), threads_per_worker=1, processes=True,
-                           dashboard_address=None)
+                           dashboard_address=":0")
     client = Client(cluster)
     client._skilllib_cluster = cluster  # closed by close_client
     return client
@@ -167,7 +167,7 @@ def corpus_features(path: str | Path, client, *, lowpass: str | float | Lowpass 
         rate = (np.nan, np.nan)
     else:
         rate = corpus_rate(str(path), med, mean)
-        ok = ~np.isnan(med) & (np.abs(med / rate[0] - 1) <= 0.10)
+        ok = ~np.isnan(med) & (np.abs(med / rate[0] - 1) <= RATE_TOLERANCE)  # usable and on the rate
         span = np.concatenate([p["span"] for p in parts])
         step = np.concatenate([p["step95"] for p in parts])
         check_corpus_units(str(path), span[ok], step[ok] / rate[1])
@@ -196,14 +196,21 @@ def _corpus_lowpass(files: list[str], client, rate: tuple[float, float], lowpass
     est = np.concatenate([p["estimates"] for p in noise_parts])
     noise = float(np.median(est)) if est.size else 0.0
     offsets = np.cumsum([0, *counts])
+    approaches: dict[int, np.ndarray] = {}
+    if speed_noise(noise, fs, window) > SPEED_NOISE_LIMIT:  # the residual analysis will read these trials
+        wanted = list(residual_trials(int(offsets[-1])))
+        part = np.searchsorted(offsets, wanted, side="right") - 1
+        for k in np.unique(part):
+            local = [int(j - offsets[k]) for j, q in zip(wanted, part) if q == k]
+            got = client.submit(partition_approaches, files[k], rate, local, pure=False).result()
+            approaches.update({int(offsets[k]) + j: a for j, a in zip(local, got)})
 
-    class Approaches(Sequence):  # fetched from the partitions only if the residual analysis runs
+    class Approaches(Sequence):  # the corpus's picked approaches; only those the analysis reads are here
         def __len__(self) -> int:
             return int(offsets[-1])
 
         def __getitem__(self, j):
-            k = int(np.searchsorted(offsets, j, side="right") - 1)
-            return client.submit(partition_approaches, files[k], rate, [int(j - offsets[k])], pure=False).result()[0]
+            return approaches[int(j)]
 
     return choose_lowpass("auto", Approaches(), fs, window, noise=noise)
 

@@ -73,3 +73,19 @@ def test_the_run_on_a_cluster_writes_the_in_memory_results(parts, tmp_path):
     assert json.dumps(a, sort_keys=True) == json.dumps(b, sort_keys=True)
     with pytest.raises(pipeline.OptionError, match="folder of Parquet files"):
         pipeline.run(cohort_path(), tmp_path / "x", workers=2, write_figures=False)
+
+
+def test_a_noisy_corpus_gets_the_in_memory_filter_on_the_cluster(tmp_path, client):
+    """Tracker noise that makes "auto" filter: the noise at rest is decided over all partitions and the
+    residual analysis reads the same 100 approaches, fetched from their partitions; the cut-off and every
+    feature are the in-memory ones."""
+    from skilllib.cohort import CohortModel, generate_cohort
+
+    frame = generate_cohort(13, CohortModel(n_participants=4, n_trials=40, fs=120.0, noise_sd=0.0005)).frame
+    p = frame["participant"].astype(str).to_numpy()
+    folder = write_parts(tmp_path / "noisy", frame, [int((p == "2").argmax()), int((p == "4").argmax())])
+    got = partitions.corpus_features(folder, client)
+    ref = trial_features(read_recordings(folder))
+    assert got.lowpass.cutoff_hz is not None and got.lowpass.chosen_by == "winter residual analysis"
+    assert got.lowpass == ref.attrs["lowpass"]
+    pd.testing.assert_frame_equal(got.features, ref, check_exact=True)

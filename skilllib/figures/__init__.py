@@ -3,7 +3,7 @@
 Every function takes data (arrays, DataFrames, result objects) and returns a matplotlib Figure;
 :func:`save` writes it as PNG and SVG. Axes carry units. One submodule per chapter's idea:
 ``smoothness`` (SPARC), ``experiment`` (the data), ``clusters`` (prototypes), ``robot`` (transfer),
-``dynamics`` (accelerations, torques, execution, time scales).
+``dynamics`` (accelerations, torques, execution, time scales), ``scale`` (time and memory against N).
 This package may import the other skilllib modules; none of them imports it.
 """
 from __future__ import annotations
@@ -48,6 +48,7 @@ from .robot import (
     plot_simple6_figure,
     plot_start_poses,
 )
+from .scale import plot_scaling
 from .smoothness import plot_sparc_against, plot_sparc_spectra, plot_speeds_and_spectra
 
 __all__ = [
@@ -60,4 +61,5 @@ __all__ = [
     "plot_robot_joints", "plot_robot_pose", "plot_simple6_figure", "plot_start_poses",
     "plot_joint_velocities", "plot_frame_mapping",
     "plot_joint_accelerations", "plot_joint_torques", "plot_executed_speed", "plot_time_scales", "dynamics_figures",
+    "plot_scaling",
 ]

@@ -1,0 +1,45 @@
+"""The scaling figure of the chapter "At scale": wall time and peak memory of whole runs against the
+number of trials, from the measurements of ``benchmarks/bench_scale.py`` (its JSON ``rows``)."""
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+#: Series of the benchmark: (mode, input) -> label and colour.
+SERIES = {("inmemory", "csv"): ("in memory, one CSV file", "tab:blue"),
+          ("inmemory", "parquet"): ("in memory, Parquet folder", "tab:green"),
+          ("dask", "parquet"): ("Dask, 2 local workers, Parquet folder", "tab:orange")}
+
+
+def plot_scaling(rows: Sequence[dict[str, Any]]) -> plt.Figure:
+    """Left: wall time (s) against trials, log-log, per series, with a dotted line of slope 1 through the
+    in-memory CSV series' largest run; right: peak memory (MB) of the main process (solid) and of the
+    largest Dask worker (dashed). Failed runs are left out (the table beside the figure lists them)."""
+    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4))
+    for (mode, kind), (label, color) in SERIES.items():
+        ok = sorted((r for r in rows if r["mode"] == mode and r["input"] == kind and not r["failed"]),
+                    key=lambda r: r["trials"])
+        if not ok:
+            continue
+        n = np.array([r["trials"] for r in ok], dtype=float)
+        a.plot(n, [r["wall_s"] for r in ok], "o-", color=color, label=label)
+        b.plot(n, [r["peak_main_mb"] for r in ok], "o-", color=color, label=f"{label}: main process")
+        if mode == "dask":
+            b.plot(n, [r["peak_worker_mb"] for r in ok], "s--", color=color, label="largest Dask worker")
+        if (mode, kind) == ("inmemory", "csv"):
+            ref = np.array([n[0], n[-1]])
+            a.plot(ref, ok[-1]["wall_s"] * ref / n[-1], ":", color="0.5", label="slope 1 (time proportional to N)")
+    for ax, what in ((a, "wall time (s)"), (b, "peak memory (MB)")):
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("trials N")
+        ax.set_ylabel(what)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7.5, frameon=False)
+    a.set_title("time of a whole run without figures")
+    b.set_title("peak resident memory")
+    fig.tight_layout()
+    return fig
