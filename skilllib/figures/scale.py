@@ -6,6 +6,7 @@ from collections.abc import Sequence
 from typing import Any
 
 import matplotlib.pyplot as plt
+import matplotlib.ticker as mticker
 import numpy as np
 
 #: Series of the benchmark: (mode, input) -> label and colour.
@@ -15,8 +16,8 @@ SERIES = {("inmemory", "csv"): ("in memory, one CSV file", "tab:blue"),
 
 
 def plot_scaling(rows: Sequence[dict[str, Any]]) -> plt.Figure:
-    """Left: wall time (s) against trials, log-log, per series, with a dotted line of slope 1 through the
-    in-memory CSV series' largest run; right: peak memory (MB) of the main process (solid) and of the
+    """Left: wall time (s) against trials, log-log, per series, with a dotted line of slope 1 over the last
+    decade through the in-memory CSV series' largest run; right: peak memory (MB) of the main process (solid) and of the
     largest Dask worker (dashed). Failed runs are left out (the table beside the figure lists them)."""
     fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4))
     for (mode, kind), (label, color) in SERIES.items():
@@ -29,15 +30,19 @@ def plot_scaling(rows: Sequence[dict[str, Any]]) -> plt.Figure:
         b.plot(n, [r["peak_main_mb"] for r in ok], "o-", color=color, label=f"{label}: main process")
         if mode == "dask":
             b.plot(n, [r["peak_worker_mb"] for r in ok], "s--", color=color, label="largest Dask worker")
-        if (mode, kind) == ("inmemory", "csv"):
-            ref = np.array([n[0], n[-1]])
-            a.plot(ref, ok[-1]["wall_s"] * ref / n[-1], ":", color="0.5", label="slope 1 (time proportional to N)")
+        if (mode, kind) == ("inmemory", "csv") and len(n) > 1:
+            ref = np.array([n[-1] / 10, n[-1]])
+            a.plot(ref, ok[-1]["wall_s"] * ref / n[-1], ":", color="0.4", lw=2,
+                   label="slope 1 (time proportional to N)")
     for ax, what in ((a, "wall time (s)"), (b, "peak memory (MB)")):
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("trials N")
         ax.set_ylabel(what)
         ax.grid(True, which="both", alpha=0.3)
+        ax.yaxis.set_major_locator(mticker.LogLocator(base=10, subs=(1, 2, 5)))
+        ax.yaxis.set_major_formatter(mticker.FuncFormatter(lambda v, _: f"{v:,.0f}" if v >= 1 else f"{v:g}"))
+        ax.yaxis.set_minor_formatter(mticker.NullFormatter())
         ax.legend(fontsize=7.5, frameon=False)
     a.set_title("time of a whole run without figures")
     b.set_title("peak resident memory")
