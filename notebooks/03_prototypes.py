@@ -108,7 +108,7 @@ print(sweep.table().round(3).T)
 # ## Which k are valid
 #
 # The paper says that silhouette analysis "reveals that $2 \le$ n clusters $\le 16$ produces valid
-# clusters" without saying by what rule. [`skilllib.prototypes.is_valid`](#skilllib.prototypes.is_valid) uses the reading of
+# clusters" without saying by what rule. [`skilllib.prototypes.is_valid`](#skilllib.silhouette.is_valid) uses the reading of
 # scikit-learn's silhouette example, which the paper cites [@sklearnsilhouette]: a clustering is **valid** when its average
 # silhouette is positive and **every cluster has at least one trial whose silhouette exceeds the
 # average**. A cluster that lies wholly below the average line is one that the partition does not
