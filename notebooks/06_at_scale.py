@@ -81,7 +81,9 @@ one_by_one["sparc"] = smoothness.sparc_bands(list(one_by_one["speed"]), rec.fs).
 vectorised = table[table["status"] != "invalid"].reset_index(drop=True)
 same = {c: bool(np.array_equal(one_by_one[c].to_numpy(), vectorised[c].to_numpy()))
         for c in ("pv", "contact_speed", "duration", "ldlj", "sparc")}
-print(f"{len(one_by_one)} segmented trials; every bit the same: {same}")
+print(f"{len(one_by_one)} segmented trials, one by one and vectorised:")
+for column, equal in same.items():
+    print(f"  {column:14s} every bit the same: {equal}")
 
 # %% tags=["remove-cell"]
 assert len(one_by_one) == len(vectorised) and all(same.values()), "text: 'the same bits'"
@@ -120,13 +122,16 @@ tiled = pd.DataFrame({"participant": np.repeat(np.arange(copies), len(sel)).asty
 fit = pt.fit_prototypes(tiled, 6)
 est = fit.silhouette_estimate
 exact = silhouette_score(tiled[["pv", "sparc"]].to_numpy(), fit.labels)
-print(f"{len(tiled)} points, k = 6: estimate {fit.silhouette:.4f} (SD of the mean {est.sd / np.sqrt(est.repeats):.4f}; "
-      f"{est.repeats} subsamples of {est.sample_size}), exact {exact:.4f}, difference {fit.silhouette - exact:+.4f}")
+print(f"{len(tiled)} points, k = 6")
+print(f"  estimate: {fit.silhouette:.4f} (mean of {est.repeats} subsamples of {est.sample_size}; "
+      f"SD of the mean {est.sd / np.sqrt(est.repeats):.4f})")
+print(f"  exact:    {exact:.4f} (difference {fit.silhouette - exact:+.4f})")
 
 # %% tags=["remove-cell"]
 assert (silhouette.SILHOUETTE_EXACT_MAX, silhouette.SILHOUETTE_REPEATS, silhouette.SILHOUETTE_SAMPLE) == (5000, 10, 1000)
 assert trialtable.TRIALS_IN_JSON_MAX == 10_000, "text: 'above 10,000 trials'"
 assert fit.silhouette_method == "subsample" and len(tiled) > silhouette.SILHOUETTE_EXACT_MAX
+assert 7_500 < len(tiled) < 8_500, "text: 'about 8,000 points'"
 assert abs(fit.silhouette - exact) < 3 * est.sd / np.sqrt(est.repeats), "text: estimate within its spread"
 
 # %% [markdown]
@@ -166,8 +171,8 @@ try:
 finally:
     partitions.close_client(client)
 identical = on_cluster.features.equals(table)
-print(f"{len(on_cluster.files)} partitions on 2 workers: {len(on_cluster.features)} trials; the feature table "
-      f"equals the in-memory one: {identical}")
+print(f"{len(on_cluster.files)} partitions on 2 workers: {len(on_cluster.features)} trials")
+print(f"the feature table equals the in-memory one: {identical}")
 
 # %% tags=["remove-cell"]
 assert identical, "text: the cluster's feature table is the in-memory one"
@@ -192,7 +197,8 @@ assert identical, "text: the cluster's feature table is the in-memory one"
 # %%
 bench = json.loads((ROOT / "benchmarks" / "results" / "scale.json").read_text())
 runs = pd.DataFrame(bench["rows"])
-shown = runs[["trials", "input", "mode", "wall_s", "peak_main_mb", "peak_worker_mb", "failed"]]
+shown = runs[["trials", "input", "mode", "wall_s", "peak_main_mb", "peak_worker_mb", "failed"]].copy()
+shown.loc[shown["mode"] != "dask", "peak_worker_mb"] = np.nan  # only Dask runs have workers
 print(f"measured {bench['when']} at commit {bench['machine']['commit']} on {bench['machine']['cpus']} CPUs")
 print(shown.round(1).to_string(index=False))
 
@@ -216,11 +222,11 @@ _, mb_per_million = growth("inmemory", "csv", "peak_main_mb")
 _, client_mb_per_million = growth("dask", "parquet", "peak_main_mb")
 at_150k = runs[(runs["mode"] == "inmemory") & (runs["input"] == "csv")].set_index("trials").loc[150_000]
 print(f"150,000 trials in memory: {at_150k['wall_s']:.0f} s, {at_150k['peak_main_mb']:,.0f} MB")
-print(f"in memory, from 150,000 trials up: time ~ N^{slope:.2f}; 10^6 more trials cost {s_per_million:.0f} s "
-      f"and {mb_per_million / 1e3:.1f} GB, so 10^8 trials would take about {s_per_million * 100 / 3600:.1f} h "
-      f"and {mb_per_million * 100 / 1e3:,.0f} GB")
-print(f"on the cluster the client's memory grows by {client_mb_per_million / 1e3:.2f} GB per 10^6 trials: about "
-      f"{client_mb_per_million * 100 / 1e3:.0f} GB for 10^8")
+print(f"in memory, from 150,000 trials up: time ~ N^{slope:.2f}")
+print(f"  10^6 more trials cost {s_per_million:.0f} s and {mb_per_million / 1e3:.1f} GB")
+print(f"  10^8 trials: about {s_per_million * 100 / 3600:.1f} h and {mb_per_million * 100 / 1e3:,.0f} GB")
+print(f"on the cluster, the client's memory: +{client_mb_per_million / 1e3:.2f} GB per 10^6 trials, "
+      f"about {client_mb_per_million * 100 / 1e3:.0f} GB for 10^8")
 
 # %% tags=["remove-cell"]
 assert at_150k["wall_s"] < 60 and at_150k["peak_main_mb"] < 1500, "issue 15: 150,000 trials under 60 s and 1.5 GB"

@@ -16,10 +16,10 @@ SERIES = {("inmemory", "csv"): ("in memory, one CSV file", "tab:blue"),
 
 
 def plot_scaling(rows: Sequence[dict[str, Any]]) -> plt.Figure:
-    """Left: wall time (s) against trials, log-log, per series, with a dotted line of slope 1 over the last
-    decade through the in-memory CSV series' largest run; right: peak memory (MB) of the main process (solid) and of the
+    """Top: wall time (s) against trials, log-log, per series, with a dotted line of slope 1 over the last
+    decade through the in-memory CSV series' largest run; bottom: peak memory (MB) of the main process (solid) and of the
     largest Dask worker (dashed). Failed runs are left out (the table beside the figure lists them)."""
-    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4))
+    fig, (a, b) = plt.subplots(2, 1, figsize=(6.4, 8.2))
     for (mode, kind), (label, color) in SERIES.items():
         ok = sorted((r for r in rows if r["mode"] == mode and r["input"] == kind and not r["failed"]),
                     key=lambda r: r["trials"])
