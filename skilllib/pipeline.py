@@ -395,18 +395,21 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
 
     written = []
 
-    def keep(fig, name: str) -> None:
+    def keep(fig, name: str, note: str = "") -> None:
         if run_.results["dataset"]["synthetic"]:
             fig.text(0.995, 0.003, SYNTHETIC_NOTE, ha="right", va="bottom", fontsize=7, color="0.35")
+        if note:
+            fig.text(0.005, 0.003, f"Shown: {note}.", ha="left", va="bottom", fontsize=7, color="0.35")
         written.extend(p.name for p in fg.save(fig, out, name))
         fg.plt.close(fig)
 
     if (run_.features["status"] != "invalid").any():  # the data figures need at least one valid trial
         keep(fg.plot_feature_overview(run_.features, run_.results["sparc_params"]["amp_th"]), "features")
         samples = isinstance(run_.recordings, Recordings)  # not on the cluster path: the samples stay there
+        few, note = fg.few_participants(run_.features)  # one panel per participant: at most 12
         if samples:
-            keep(fg.plot_trials_by_participant(run_.recordings, run_.features), "trials_by_participant")
-        keep(fg.plot_participant_features(run_.features), "participant_features")
+            keep(fg.plot_trials_by_participant(run_.recordings, few), "trials_by_participant", note)
+        keep(fg.plot_participant_features(few), "participant_features", note)
         if samples:
             keep(fg.plot_sparc_vs_length(run_.features, run_.recordings.fs, run_.results["sparc_params"]["amp_th"]),
                  "sparc_vs_length")

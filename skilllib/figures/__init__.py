@@ -28,7 +28,9 @@ from .dynamics import (
     plot_time_scales,
 )
 from .experiment import (
+    MAX_FIGURE_PARTICIPANTS,
     PARTICIPANT_COLORS,
+    few_participants,
     plot_contact_speeds,
     plot_estimates_vs_truth,
     plot_feature_overview,
@@ -52,7 +54,8 @@ from .scale import plot_scaling
 from .smoothness import plot_sparc_against, plot_sparc_spectra, plot_speeds_and_spectra
 
 __all__ = [
-    "plt", "save", "CLUSTER_COLORS", "PARTICIPANT_COLORS", "JOINT_COLORS",
+    "plt", "save", "CLUSTER_COLORS", "PARTICIPANT_COLORS", "JOINT_COLORS", "few_participants",
+    "MAX_FIGURE_PARTICIPANTS",
     "plot_sparc_spectra", "plot_speeds_and_spectra", "plot_sparc_against",
     "plot_trials_by_participant", "plot_segmentation", "plot_participant_features", "plot_contact_speeds",
     "plot_feature_space", "plot_feature_overview", "plot_estimates_vs_truth", "plot_sparc_vs_length",

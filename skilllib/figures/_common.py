@@ -9,8 +9,20 @@ import matplotlib.pyplot as plt
 CLUSTER_COLORS = plt.get_cmap("tab10").colors
 
 
+#: A plot with more points than this (scatter points, line vertices) has its data drawn as an image in the SVG.
+DENSE = 20_000
+
+
 def save(fig: plt.Figure, out_dir: str | Path, name: str, dpi: int = 150) -> list[Path]:
-    """Write ``fig`` as ``out_dir/name.png`` and ``out_dir/name.svg``; return both paths."""
+    """Write ``fig`` as ``out_dir/name.png`` and ``out_dir/name.svg``; return both paths. In the SVG, a
+    plot holding more than :data:`DENSE` points in all (a corpus of 10^5 trials) has its data layers
+    rasterized at ``dpi``, so that the file stays small (axes, text and sparse layers stay vectors)."""
+    for ax in fig.axes:
+        layers = [(c, max(len(c.get_offsets()), sum(len(p.vertices) for p in c.get_paths())))
+                  for c in ax.collections] + [(line, len(line.get_xdata())) for line in ax.lines]
+        if sum(n for _, n in layers) > DENSE:  # the axes' data layers as one image; reference lines stay vectors
+            for artist, n in layers:
+                artist.set_rasterized(n > 100)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     paths = [out / f"{name}.png", out / f"{name}.svg"]

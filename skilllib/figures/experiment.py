@@ -35,6 +35,20 @@ def _approach(rec: Recordings, p, tr) -> tuple[np.ndarray, np.ndarray, np.ndarra
     return d.t, d.pos[:, 1], np.linalg.norm(velocity(d.pos[:c], rec.fs), axis=1), c
 
 
+#: Participants the per-participant figures of a run draw at most (one panel or box each).
+MAX_FIGURE_PARTICIPANTS = 12
+
+
+def few_participants(features: pd.DataFrame, most: int = MAX_FIGURE_PARTICIPANTS) -> tuple[pd.DataFrame, str]:
+    """The rows of the first ``most`` participants (natural order of their ids) and a note saying so
+    ("" when all are kept): a corpus of a thousand participants would give a thousand panels."""
+    parts = sort_ids(features["participant"].unique())
+    if len(parts) <= most:
+        return features, ""
+    kept = features[features["participant"].isin(parts[:most])]
+    return kept, f"the first {most} of {len(parts)} participants (by id)"
+
+
 def plot_trials_by_participant(recordings: Recordings, features: pd.DataFrame,
                                window: tuple[float, float] = (-0.9, 0.3)) -> plt.Figure:
     """The paper's Fig. 1b redrawn: vertical position y (m) and speed (m/s, approach only) of every valid
@@ -159,8 +173,9 @@ def _mark_capped(ax: plt.Axes, f: pd.DataFrame, x: str, amp_th: float) -> None:
     """Ring the trials whose SPARC band fc ended and draw the threshold-ended bound (dashed)."""
     if "sparc_capped" in f.columns:
         cap = f[f["sparc_capped"].fillna(False).astype(bool)]
-        ax.scatter(cap[x], cap["sparc"], s=16, facecolor="none", edgecolor="k", lw=0.5,
-                   label=f"band ended by fc ({len(cap)})", zorder=4)
+        many = len(cap) > 2_000  # a corpus: faint rings, or they hide every point
+        ax.scatter(cap[x], cap["sparc"], s=16, facecolor="none", edgecolor="k", lw=0.3 if many else 0.5,
+                   alpha=0.15 if many else 1.0, label=f"band ended by fc ({len(cap)})", zorder=4)
     ax.axhline(threshold_bound(amp_th), color="0.3", ls="--", lw=0.8,
                label=f"highest SPARC of a band ended by amp_th = {amp_th:g}")
 
@@ -175,7 +190,10 @@ def plot_feature_space(features: pd.DataFrame, ax: plt.Axes | None = None,
     fig, ax = plt.subplots(figsize=(6, 4)) if ax is None else (ax.figure, ax)
     ex = f[f["status"] == "excluded"]
     ax.scatter(ex["pv"], ex["sparc"], s=4, color="0.8", label="excluded")
-    for p in parts:
+    if len(parts) > MAX_FIGURE_PARTICIPANTS:  # a corpus: one colour, not a legend of every participant
+        g = f[f["status"] == "selected"]
+        ax.scatter(g["pv"], g["sparc"], s=3, color="tab:blue", label=f"selected ({len(parts)} participants)")
+    for p in parts if len(parts) <= MAX_FIGURE_PARTICIPANTS else []:
         g = f[(f["participant"] == p) & (f["status"] == "selected")]
         ax.scatter(g["pv"], g["sparc"], s=6, color=_pcolor(parts, p), label=_plabel(p))
     _mark_capped(ax, f, "pv", amp_th)
