@@ -138,7 +138,7 @@ def corpus_rate(source: str, med_dt: np.ndarray, mean_dt: np.ndarray) -> tuple[f
     return ref, float(np.median(mean_dt[ok & ~off]))
 
 
-def _check_rates(source: str, stats: checks.TrialStats, reasons: list[str],
+def _check_rates(source: str, stats: TrialStats, reasons: list[str],
                  rate: tuple[float, float] | None = None) -> float:
     """Time units and mixed rates (errors, unless ``rate`` is given), single off-rate trials (invalid);
     returns the sampling interval in s. ``stats``: NaN for the trials not usable."""
@@ -151,7 +151,7 @@ def _check_rates(source: str, stats: checks.TrialStats, reasons: list[str],
     return dt
 
 
-def _check_units(source: str, stats: checks.TrialStats, reasons: list[str], dt: float,
+def _check_units(source: str, stats: TrialStats, reasons: list[str], dt: float,
                  corpus_checked: bool = False) -> None:
     """Positions in millimetres (or centimetres) raise (unless ``corpus_checked``: the caller checked the
     whole corpus, :func:`check_corpus_units`); a single trial with a huge span is invalid."""

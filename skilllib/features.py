@@ -36,7 +36,6 @@ reason) or ``invalid`` (cannot be segmented or bad samples, with the reason; fea
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
