@@ -18,7 +18,7 @@ with its exit code and the last line of its stderr; an option the command line d
 as ``--workers`` before Dask support) ends that series, and the other series go on. The script exits 1
 when any run failed.
 
-After the runs: the slope of log(time) against log(N) (least squares over the sizes >= 15,000 trials),
+After the runs: the slope of log(time) against log(N) (least squares over the sizes >= 150,000 trials),
 the cost per 10^6 trials (from the two largest sizes) and what both project for 10^8 trials, with the
 in-memory path's projected peak memory against this machine's RAM.
 
@@ -52,7 +52,9 @@ ROOT = Path(__file__).resolve().parent.parent
 BENCH_DIR = ROOT / "_build" / "bench"
 TRIALS_PER_COPY = 1_500  #: trials of the book's cohort, one copy of the corpus
 DEFAULT_SIZES = (1, 10, 100, 300, 667)  #: copies: 1.5k, 15k, 150k, 450k, ~10^6 trials
-FIT_MIN_TRIALS = 15_000  #: the slope is fitted over the sizes with at least this many trials
+#: the slope is fitted over the sizes with at least this many trials (below, the few seconds of start-up
+#: of a run weigh: from 1,500 to 15,000 trials the time grows by 1.6x for 10x the trials)
+FIT_MIN_TRIALS = 150_000
 TARGET_TRIALS = 10**8  #: the projection's corpus size
 POLL_S = 0.05  #: s between two samples of the process tree
 MB = 2**20
@@ -382,7 +384,16 @@ def main(argv: Sequence[str] | None = None) -> int:
                     help="corpora (reused when present) and the runs' output folders (default _build/bench)")
     ap.add_argument("--out-md", type=Path, help="append the markdown table and the projection to this file")
     ap.add_argument("--json", type=Path, help="write the raw measurements, the fits and the machine here")
+    ap.add_argument("--refit", type=Path, metavar="JSON",
+                    help="run nothing: recompute the fits and projections of the measurements stored in JSON "
+                         "(after a change of the fitting) and write them back into it")
     args = ap.parse_args(argv)
+    if args.refit:
+        stored = json.loads(args.refit.read_text())
+        lines, stored["fits"] = projections(stored["rows"], stored["machine"]["ram_mb"])
+        args.refit.write_text(json.dumps(stored, indent=1))
+        print("\n".join([markdown_table(stored["rows"]), "", *lines]))
+        return 0
 
     series = ([("inmemory", kind) for kind in args.inputs] if args.mode in ("inmemory", "both") else []) + \
              ([("dask", "parquet")] if args.mode in ("dask", "both") else [])

@@ -208,28 +208,22 @@ print(shown.round(1).to_string(index=False))
 plot_scaling(bench["rows"]);
 
 # %%
-def growth(mode: str, kind: str, column: str) -> tuple[float, float]:
-    """Slope of log(value) on log(N) from 150,000 trials up, and the cost of 10^6 more trials (the two
-    largest sizes)."""
-    r = runs[(runs["mode"] == mode) & (runs["input"] == kind) & (runs["failed"] == 0)].sort_values("trials")
-    n, v = r["trials"].to_numpy(float), r[column].to_numpy(float)
-    big = n >= 150_000
-    return np.polyfit(np.log(n[big]), np.log(v[big]), 1)[0], (v[-1] - v[-2]) / (n[-1] - n[-2]) * 1e6
-
-
-slope, s_per_million = growth("inmemory", "csv", "wall_s")
-_, mb_per_million = growth("inmemory", "csv", "peak_main_mb")
-_, client_mb_per_million = growth("dask", "parquet", "peak_main_mb")
+fits = bench["fits"]  # benchmarks/bench_scale.py's fits: slope from 150,000 trials up, cost of 10^6 more
+memory_csv, cluster = fits["in-memory, csv"], fits["Dask, 2 workers, parquet"]
+slope = memory_csv["time_s"]["slope"]
+s_per_million, mb_per_million = memory_csv["time_s"]["per_million"], memory_csv["peak_main_mb"]["per_million"]
+client_mb_per_million = cluster["peak_main_mb"]["per_million"]
 at_150k = runs[(runs["mode"] == "inmemory") & (runs["input"] == "csv")].set_index("trials").loc[150_000]
 print(f"150,000 trials in memory: {at_150k['wall_s']:.0f} s, {at_150k['peak_main_mb']:,.0f} MB")
 print(f"in memory, from 150,000 trials up: time ~ N^{slope:.2f}")
 print(f"  10^6 more trials cost {s_per_million:.0f} s and {mb_per_million / 1e3:.1f} GB")
 print(f"  10^8 trials: about {s_per_million * 100 / 3600:.1f} h and {mb_per_million * 100 / 1e3:,.0f} GB")
-print(f"on the cluster, the client's memory: +{client_mb_per_million / 1e3:.2f} GB per 10^6 trials, "
-      f"about {client_mb_per_million * 100 / 1e3:.0f} GB for 10^8")
+print("on the cluster, the client's memory:")
+print(f"  +{client_mb_per_million / 1e3:.2f} GB per 10^6 trials, about {client_mb_per_million * 100 / 1e3:.0f} GB for 10^8")
 
 # %% tags=["remove-cell"]
 assert at_150k["wall_s"] < 60 and at_150k["peak_main_mb"] < 1500, "issue 15: 150,000 trials under 60 s and 1.5 GB"
+assert memory_csv["time_s"]["sizes"][0] == 150_000, "text: the slope is fitted from 150,000 trials up"
 assert 0.85 < slope < 1.15, "text: time grows in proportion to N from 150,000 trials up"
 assert (runs["trials"].max() >= 1_000_000) and not runs["failed"].any(), "text: every run up to 10^6 trials finished"
 assert mb_per_million * 100 > bench["machine"]["ram_mb"], "text: 10^8 trials do not fit in this machine in memory"
@@ -251,8 +245,8 @@ assert (workers.set_index("trials")["wall_s"] > runs[(runs["mode"] == "inmemory"
 # trials, and its memory grows with $N$ at the rate printed above. So $10^8$ trials need a client of
 # that size, or a clustering that runs on the cluster too, which the book does not build. With two
 # local workers on the same two cores, the cluster is slower than the in-memory path: it reads each
-# partition three times, and moves data between processes. It pays off when its workers are other
-# machines.
+# partition three times, and moves data between processes. It is meant for workers on other machines,
+# which this benchmark did not measure.
 #
 # ## Summary
 #
