@@ -33,7 +33,7 @@ serve: venv theme
 # wheel installed in a fresh venv; they balance the lanes), its output kept in _build/test-book.log and
 # shown at the end; (b) every other test. Both must pass.
 EXECUTED := _executed
-LANE_A := tests/test_cohort.py::test_the_seed_rule_is_recomputed_from_scratch tests/test_install.py
+LANE_A := tests/cohort/test_cohort.py::test_the_seed_rule_is_recomputed_from_scratch tests/test_install.py
 test: venv theme
 	rm -rf $(EXECUTED) && mkdir -p $(EXECUTED) _build/ipython/profile_default
 	cp notebooks/[0-9][0-9]_*.ipynb $(EXECUTED)/

@@ -1,8 +1,8 @@
 """The in-memory path's stages on one corpus, side by side with what they replaced.
 
 * reading and validating the CSV: pyarrow's reader (a plain file) against pandas' reader (any other
-  file; what every file went through before), both through :func:`skilllib.data.recordings_from_frame`;
-* the features of every trial: :func:`skilllib.features.trial_features` (vectorised, skilllib.batch)
+  file; what every file went through before), both through :func:`skilllib.recordings.recordings_from_frame`;
+* the features of every trial: :func:`skilllib.features.trial_features` (vectorised, skilllib.features)
   against the per-trial loop of tests/test_batch.py (``reference_features``) on the first
   ``--reference`` trials, timed in the same process, alternately, ``--repeats`` times (medians).
 
@@ -30,9 +30,9 @@ sys.path.insert(0, str(ROOT / "tests"))
 
 from test_batch import reference_features  # noqa: E402  (the per-trial loop, the tests' reference)
 
-from skilllib.csvtable import read_table  # noqa: E402
-from skilllib.data import read_recordings, recordings_from_frame  # noqa: E402
-from skilllib.features import trial_features  # noqa: E402
+from skilllib.recordings import read_table
+from skilllib.recordings import read_recordings, recordings_from_frame
+from skilllib.features import trial_features
 
 
 def timed(fn, *args, **kwargs):

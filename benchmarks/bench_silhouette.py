@@ -30,8 +30,8 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 from sklearn.metrics import silhouette_samples  # noqa: E402
 
-from skilllib import silhouette as sil  # noqa: E402
-from skilllib.prototypes import SilhouetteSweep, feature_frame, silhouette_sweep  # noqa: E402
+from skilllib.prototypes import _silhouette as sil
+from skilllib.prototypes import SilhouetteSweep, feature_frame, silhouette_sweep
 
 SEED = 20201
 N_BLOBS = 10

@@ -27,7 +27,7 @@ import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from skilllib.smoothness import SPARC_PARAMS, ldlj_many, minimum_jerk_speed, sparc_many  # noqa: E402
+from skilllib.smoothness import SPARC_PARAMS, ldlj_many, minimum_jerk_speed, sparc_many
 
 FS = 60.0  # Hz, the Phantom's sampling rate in the experiment
 

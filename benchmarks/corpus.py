@@ -25,7 +25,7 @@ import pyarrow as pa
 import pyarrow.csv as pacsv
 import pyarrow.parquet as pq
 
-from skilllib.data import read_recordings
+from skilllib.recordings import read_recordings
 from skilllib.datasets import cohort_path
 
 SCALE_JITTER = 0.05  #: +- relative amplitude change per trial

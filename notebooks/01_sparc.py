@@ -35,7 +35,6 @@
 # ```
 
 # %% tags=["hide-input"]
-from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -43,10 +42,21 @@ import pandas as pd
 
 import skilllib.cohort
 import skilllib.datasets
-from skilllib import data, features
+from skilllib.recordings import _recordings as data
+from skilllib.features import _table as features
 from skilllib.figures import plot_sparc_against, plot_sparc_spectra, plot_speeds_and_spectra, threshold_bound
-from skilllib.smoothness import (SPARC_PARAMS, ldlj, ldlj_many, minimum_jerk_segment, minimum_jerk_speed, nfft,
-                                 sparc, sparc_bands, sparc_many, sparc_spectrum)
+from skilllib.smoothness import (
+    SPARC_PARAMS,
+    ldlj,
+    ldlj_many,
+    minimum_jerk_segment,
+    minimum_jerk_speed,
+    nfft,
+    sparc,
+    sparc_bands,
+    sparc_many,
+    sparc_spectrum,
+)
 
 FS = 60.0  # Hz, the sampling rate of the experiment
 

@@ -36,7 +36,6 @@
 
 # %% tags=["hide-input"]
 import time
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -45,7 +44,11 @@ from sklearn.cluster import KMeans
 from sklearn.metrics import roc_auc_score, silhouette_score
 
 import skilllib.datasets
-from skilllib import calibration, cohort, data, duration, features, figures
+from skilllib.cohort import _calibration as calibration, _model as cohort
+from skilllib.recordings import _recordings as data
+from skilllib.prototypes import _segment_length as duration
+from skilllib.features import _table as features
+from skilllib import figures
 from skilllib.prototypes import silhouette_sweep
 
 pd.set_option("display.precision", 3)
@@ -79,7 +82,7 @@ COHORT_CSV = skilllib.datasets.cohort_path()  # data/cohort.csv in the repositor
 # | `x`, `y`, `z` | m | spoon-tip position in the device frame |
 # | `contact` | 0/1 | 1 while the tip touches the contact surface |
 #
-# A trial's rows are contiguous and in time order. [`skilllib.data.read_recordings`](#skilllib.data.read_recordings) reads and checks a
+# A trial's rows are contiguous and in time order. [`skilllib.recordings.read_recordings`](#skilllib.recordings.read_recordings) reads and checks a
 # file. Problems with the file itself raise `DataFormatError` with the file, line and column: a missing
 # column, a cell that is not a number, positions in millimetres, time in milliseconds, or mixed sampling
 # rates. Problems with a single trial mark that trial `invalid` with a reason and the rest goes on; those
@@ -98,7 +101,7 @@ rec.frame.head()
 
 # %% [markdown]
 # The committed file is exactly what the seeded generator writes: regenerating the cohort and passing it
-# through the same writer (`skilllib.data.format_recordings`, which rounds t to 0.1 ms and positions to
+# through the same writer (`skilllib.recordings.format_recordings`, which rounds t to 0.1 ms and positions to
 # 0.01 mm) reproduces the file byte for byte. A test checks the same.
 
 # %%
@@ -429,7 +432,7 @@ assert round(features.SPARC_PARAMS["fc"] * sel.duration.median()) == 5, "text: a
 # other properties of a segment may drive SPARC as well: its duration (length), how much of the bell the
 # contact cuts off (the *contact ratio*, contact speed divided by PV: 1 means contact at peak speed) and
 # PV. The table gives the share of SPARC's variance across the selected trials that each explains alone
-# and all together (linear least squares, [`skilllib.duration.variance_explained`](#skilllib.duration.variance_explained)), with the book's 20 Hz
+# and all together (linear least squares, [`skilllib.prototypes.variance_explained`](#skilllib.prototypes.variance_explained)), with the book's 20 Hz
 # and, for comparison, with 10 Hz:
 
 # %%

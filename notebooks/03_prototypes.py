@@ -42,19 +42,27 @@ import pandas as pd
 from scipy.stats import bootstrap
 from sklearn.metrics import adjusted_rand_score, silhouette_score
 
-import skilllib.data
+import skilllib.recordings
 import skilllib.features
-from skilllib import cohort, duration
-from skilllib import participants as pp
-from skilllib import prototypes as pt
-from skilllib.figures import (plot_cluster_participants, plot_clusters, plot_prototype_profiles,
-                              plot_silhouette_sweep, plot_silhouettes, plot_sparc_sensitivity, plot_stability,
-                              threshold_bound)
+from skilllib.cohort import _model as cohort
+from skilllib.prototypes import _segment_length as duration
+from skilllib.prototypes import _participants as pp
+from skilllib.prototypes import _kmeans as pt
+from skilllib.figures import (
+    plot_cluster_participants,
+    plot_clusters,
+    plot_prototype_profiles,
+    plot_silhouette_sweep,
+    plot_silhouettes,
+    plot_sparc_sensitivity,
+    plot_stability,
+    threshold_bound,
+)
 from skilllib.pipeline import DEFAULT_DATA
-from skilllib.sensitivity import sparc_sensitivity
-from skilllib.transfer import transfer
+from skilllib.prototypes import sparc_sensitivity
+from skilllib.robot import transfer
 
-rec = skilllib.data.read_recordings(DEFAULT_DATA)
+rec = skilllib.recordings.read_recordings(DEFAULT_DATA)
 feats = skilllib.features.trial_features(rec)
 sel = skilllib.features.select(feats)
 print(f"{len(sel)} selected trials of {len(feats)}, from {sel['participant'].nunique()} participants")
@@ -108,7 +116,7 @@ print(sweep.table().round(3).T)
 # ## Which k are valid
 #
 # The paper says that silhouette analysis "reveals that $2 \le$ n clusters $\le 16$ produces valid
-# clusters" without saying by what rule. [`skilllib.prototypes.is_valid`](#skilllib.silhouette.is_valid) uses the reading of
+# clusters" without saying by what rule. [`skilllib.prototypes.is_valid`](#skilllib.prototypes.is_valid) uses the reading of
 # scikit-learn's silhouette example, which the paper cites [@sklearnsilhouette]: a clustering is **valid** when its average
 # silhouette is positive and **every cluster has at least one trial whose silhouette exceeds the
 # average**. A cluster that lies wholly below the average line is one that the partition does not
@@ -278,7 +286,7 @@ comparison
 #
 # The paper computes SPARC "within the frequency range 0 to 20 Hz"; the SPARC authors' Python code
 # defaults to 10 Hz. Chapter 1 chose 20 Hz because on segments as short as these the 10 Hz cap ends most
-# bands itself. What does the choice change downstream? [`skilllib.sensitivity.sparc_sensitivity`](#skilllib.sensitivity.sparc_sensitivity) runs this
+# bands itself. What does the choice change downstream? [`skilllib.prototypes.sparc_sensitivity`](#skilllib.prototypes.sparc_sensitivity) runs this
 # chapter's whole procedure (features, selection, silhouette sweep, K-means with $k = 6$, prototypes)
 # once per setting and compares each with the first; the pipeline offers the same as
 # `python -m skilllib run --sensitivity fc=10`. The selection uses the contact speed only, so both
@@ -649,7 +657,7 @@ plot_clusters(ward);
 # hand velocity, so the fastest prototype demands the fastest joints and decides whether the arm can
 # follow at the human's pace. With more clusters the fastest cluster tends to hold fewer, more extreme
 # trials. For $k$ = 4, 6 and 8 the table gives the PV range the prototypes span and the Simple6 joint
-# velocities of the fastest prototype, computed by [`skilllib.transfer.transfer`](#skilllib.transfer.transfer) at the paper's pose
+# velocities of the fastest prototype, computed by [`skilllib.robot.transfer`](#skilllib.robot.transfer) at the paper's pose
 # (chapter 4 explains the transfer), against the book's limit of $\pi$ rad/s per joint.
 
 # %%
@@ -695,7 +703,7 @@ assert by_k["smallest cluster"].is_monotonic_decreasing, "text: the smallest clu
 #
 # Chapter 2 showed that on these segments SPARC follows how abruptly the contact ends a trial (the
 # contact ratio, contact speed over PV) and the segment's length more than the generator's corrective
-# submovements. Does that shape the clusters? [`skilllib.duration.adjusted_sparc`](#skilllib.duration.adjusted_sparc) removes from SPARC the
+# submovements. Does that shape the clusters? [`skilllib.prototypes.adjusted_sparc`](#skilllib.prototypes.adjusted_sparc) removes from SPARC the
 # part that a linear fit on log duration and contact ratio predicts across the selected trials, keeping
 # its mean and scale; clustering (PV, adjusted SPARC) asks which partition remains once the two are held
 # fixed.
@@ -748,7 +756,7 @@ print(f"participants whose trials fall in at most 2 clusters: {spread_p.index[sp
 # nothing about who made a trial and 1 when each participant is a cluster. With ten participants and six
 # clusters of unequal sizes even unrelated labels give a small positive NMI, so it is compared with a
 # permutation baseline: the participant labels shuffled across the same trials 999 times
-# ([`skilllib.participants.participant_dependence`](#skilllib.participants.participant_dependence)). The share of PV's and SPARC's variance that lies
+# ([`skilllib.prototypes.participant_dependence`](#skilllib.prototypes.participant_dependence)). The share of PV's and SPARC's variance that lies
 # between the participants' means says how much of each feature is a property of the person.
 
 # %%
@@ -804,7 +812,7 @@ assert share.is_monotonic_increasing and share.iloc[0] < 0.35 and share.iloc[-1]
 # hold:** the six clusters are speed bands, strongly tied to who made the trial, and they separate the
 # one strategy the generator has only as far as it correlates with speed. Whether the paper's recordings
 # behave the same cannot be checked; the book's synthetic participants differ in habitual speed by
-# design, as the paper's Fig. 1b shows its participants did. For one's own data, `skilllib.participants`
+# design, as the paper's Fig. 1b shows its participants did. For one's own data, `skilllib.prototypes`
 # gives the same table and test.
 
 # %% [markdown]

@@ -41,16 +41,24 @@ import numpy as np
 import pandas as pd
 from IPython.utils.capture import capture_output
 
-import skilllib.data
+import skilllib.recordings
 import skilllib.features
 import skilllib.prototypes
-from skilllib import figures, robots
+from skilllib import figures
+from skilllib.robot import _arms as robots
 from skilllib.pipeline import DEFAULT_DATA
-from skilllib.smoothness import SPARC_PARAMS, sparc, sparc_spectrum
-from skilllib.transfer import (COND_THRESHOLD, EXP_TO_BASE, IK_RESIDUAL_TOL_M, SINGULAR_COND, apply_time_scale,
-                               time_scaled_features, transfer)
+from skilllib.smoothness import SPARC_PARAMS, sparc_spectrum
+from skilllib.robot import (
+    COND_THRESHOLD,
+    EXP_TO_BASE,
+    IK_RESIDUAL_TOL_M,
+    SINGULAR_COND,
+    apply_time_scale,
+    time_scaled_features,
+    transfer,
+)
 
-rec = skilllib.data.read_recordings(DEFAULT_DATA)
+rec = skilllib.recordings.read_recordings(DEFAULT_DATA)
 feats = skilllib.features.trial_features(rec)
 sel = skilllib.features.select(feats)
 fit = skilllib.prototypes.fit_prototypes(sel, 6)  # the paper's k = 6, raw (PV, SPARC) features
@@ -139,7 +147,7 @@ pd.DataFrame(J, index=["vx", "vy", "vz", "wx", "wy", "wz"],
 # ## The four steps
 #
 # The paper computes the joint velocities of a prototype in four steps (Sec. 4), at every sample $k$
-# of its trajectory. [`skilllib.transfer.transfer`](#skilllib.transfer.transfer) does exactly these, on any roboticstoolbox arm:
+# of its trajectory. [`skilllib.robot.transfer`](#skilllib.robot.transfer) does exactly these, on any roboticstoolbox arm:
 #
 # 1. **Inverse kinematics**: a configuration $q_k$ whose tool point is at the hand position $p_k$.
 #    The tool orientation is held at that of the start pose (the recordings hold positions only, so
@@ -220,7 +228,7 @@ robot_figure(figures.plot_frame_mapping, simple6, r_fast)
 #
 # The paper's arm is *Simple6* from the MATLAB Robotics Toolbox (release 10): two 1 m links and a
 # spherical wrist whose three axes meet at the tool point. The Python toolbox does not ship it, so
-# [`skilllib.robots.simple6`](#skilllib.robots.simple6) builds it from its Denavit-Hartenberg table. [](#fig-simple6) redraws the
+# [`skilllib.robot.simple6`](#skilllib.robot.simple6) builds it from its Denavit-Hartenberg table. [](#fig-simple6) redraws the
 # paper's Fig. 3: the joint labels and the default "dexterous" pose
 # $q = (0, -60, 120, 90, -90, 30)$ deg, where the tool point is at (1, 0, 0) m.
 
@@ -762,7 +770,7 @@ assert np.ptp(moved["(a) SPARC, fc/s"]) > 2 * np.ptp(moved["PV/s (m/s)"]), \
 # ## Beyond Simple6: UR5, Puma 560 and Panda
 #
 # Simple6 is a textbook arm. The same transfer runs on any roboticstoolbox arm;
-# [`skilllib.robots.get_robot`](#skilllib.robots.get_robot) supplies three real ones, each with a start pose that is inside its joint
+# [`skilllib.robot.get_robot`](#skilllib.robot.get_robot) supplies three real ones, each with a start pose that is inside its joint
 # limits, reaches the whole descent and is well conditioned ([](#fig-start-poses)), and with its joint
 # velocity limits:
 #
@@ -911,13 +919,13 @@ assert per_arm["max_cond_J"].max() < 10, "text: 'the condition numbers stay belo
 # same, the tests compare). For the Panda's minimum-norm solution $\dot q = J^+ v$ the exact derivative
 # has one more term, $(I - J^+ J)\, \dot J^\top (J J^\top)^{-1} v$, in the null space of $J$. The jerk,
 # $d\ddot q / dt$, is the same three-point derivative of $\ddot q$, a stated numerical choice.
-# `skilllib.dynamics.joint_dynamics` computes all three per sample and joint, and
-# `skilllib.feasibility.assess` adds the limits and the executed motion of the next sections, on every
+# `skilllib.robot.joint_dynamics` computes all three per sample and joint, and
+# `skilllib.robot.assess` adds the limits and the executed motion of the next sections, on every
 # arm at once. The check of [](#eq-qddot) is the plain derivative of $\dot q$ itself.
 
 # %%
-from skilllib.dynamics import derivative
-from skilllib.feasibility import assess
+from skilllib.robot import derivative
+from skilllib.robot import assess
 
 assessed = {name: assess(setups[name].robot, on_arm[name], robots.dynamic_limits(name)) for name in arms}
 dyn = {name: [a.dynamics for a in res] for name, res in assessed.items()}
@@ -1109,7 +1117,7 @@ fig = figures.plot_time_scales({d[0].transfer.robot: d for d in dyn.values()})
 # predict $s = \sqrt{\max|\tau| / \tau^{\max}}$; gravity makes the true stretch larger:
 
 # %%
-from skilllib.dynamics import joint_dynamics
+from skilllib.robot import joint_dynamics
 
 weak = np.array(robots.PUMA560_TAU_LIMITS)
 weak[1] = 100.0
@@ -1141,7 +1149,7 @@ assert all(d.limits_hold(d.time_scale) for d in weak_dyn), "text: 'every limit h
 # %% [markdown]
 # ## Executed motion
 #
-# So far the robot's tool follows the prototype by construction: nothing was executed. `skilllib.execution`
+# So far the robot's tool follows the prototype by construction: nothing was executed. `skilllib.robot`
 # simulates the arm following each prototype's joint velocity commands with a joint velocity controller
 # at 500 Hz (the rate of a Universal Robots e-Series controller). The commands are interpolated between
 # the 60 Hz samples by a cubic Hermite spline through $\dot q_k$ and $\ddot q_k$; at every tick the command
@@ -1230,7 +1238,7 @@ fig = figures.plot_executed_speed(assessed["simple6"])
 # about 1 rad/s² per m/s², so this is the question of the acceleration limit's stretch $s_a$.
 
 # %%
-from skilllib.duration import partial_correlation, variance_explained
+from skilllib.prototypes import partial_correlation, variance_explained
 
 cohort = sel[["participant", "trial", "pv", "sparc", "duration"]].copy()
 cohort["log_peak_acc"] = np.log([np.linalg.norm(derivative(s.vel, s.t), axis=1).max() for s in
@@ -1264,10 +1272,10 @@ assert round(r2, 3) == 0.852 and round(r2_sparc, 3) == 0.859, "text: 'PV and dur
 #
 # - **unreachable**: the target lies outside the arm's *reach shell*, the range of distances from the
 #   shoulder (where the axes of joints 1 and 2 meet) that its tool point can take within the joint limits
-#   (`skilllib.workspace`). Rotations about those two axes do not change the distance, so it depends on
+#   (`skilllib.robot`). Rotations about those two axes do not change the distance, so it depends on
 #   the other joints only; its range is found numerically and checked against closed forms (Simple6: 0 to
 #   2 m, its two 1 m links; Puma 560: 0.877 m). Such a target is not searched.
-# - **IK failure**: inside the shell, the searches of `skilllib.ik` all failed: Levenberg-Marquardt from
+# - **IK failure**: inside the shell, the searches of `skilllib.robot` all failed: Levenberg-Marquardt from
 #   the previous solution, then with random restarts, Gauss-Newton with the pseudo-inverse, and
 #   Levenberg-Marquardt with Sugihara's damping, each with restarts drawn within the joint limits. The
 #   flag says why the best attempt was rejected and gives $\kappa(J)$ at the last solved sample.
@@ -1280,7 +1288,7 @@ assert round(r2, 3) == 0.852 and round(r2_sparc, 3) == 0.859, "text: 'PV and dur
 # show the ill-conditioned flag as the arm stretches out.
 
 # %%
-from skilllib.workspace import reach_shell
+from skilllib.robot import reach_shell
 
 seg = segs[fastest]
 blow_up = 2.0 / protos.at[fastest, "descent"]

@@ -42,8 +42,11 @@ from sklearn.metrics import silhouette_score
 
 import skilllib
 
-from skilllib import partitions, prototypes as pt, silhouette, smoothness, trialtable
-from skilllib.data import read_recordings
+from skilllib.features import _dask as partitions
+from skilllib.prototypes import _kmeans as pt, _silhouette as silhouette
+from skilllib.smoothness import _measures as smoothness
+from skilllib.pipeline import _trials_file as trialtable
+from skilllib.recordings import read_recordings
 from skilllib.datasets import cohort_path
 from skilllib.features import segment_arrays, select, trial_features
 from skilllib.figures import plot_scaling
@@ -58,9 +61,9 @@ table = trial_features(rec)
 # ## The same table without a loop per trial
 #
 # Chapters 2 and 3 segment one trial at a time with
-# [`segment_arrays`](#skilllib.kinematics.segment_arrays): the derivative of the approach, the onset,
+# [`segment_arrays`](#skilllib.features.segment_arrays): the derivative of the approach, the onset,
 # the segment. That remains the definition. For many trials
-# [`skilllib.batch`](#skilllib.batch.segment_many) gathers the trials whose approaches have the same
+# [`skilllib.features`](#skilllib.features.segment_many) gathers the trials whose approaches have the same
 # length into one block and runs every step on the block along its rows. A numpy reduction along the rows
 # of a block (the sums of LDLJ, the medians of the checks, the derivative's convolution) computes each
 # row exactly as it computes that row alone, so the block path gives the same bits (at rates of 240 Hz
@@ -104,7 +107,7 @@ assert len(one_by_one) == len(vectorised) and all(same.values()), "text: 'the sa
 #
 # The silhouette of a trial compares its distance to its own cluster with its distance to the nearest
 # other cluster [@rousseeuw1987]. Every pair of trials enters, so the cost of the exact average grows with
-# $N^2$, and the sweep fits 15 clusterings. Up to 5,000 points (`skilllib.silhouette.SILHOUETTE_EXACT_MAX`)
+# $N^2$, and the sweep fits 15 clusterings. Up to 5,000 points (`skilllib.prototypes.SILHOUETTE_EXACT_MAX`)
 # the book computes it exactly. Beyond that
 # it reports the mean over 10 random subsamples of 1,000 trials each, stratified by cluster so that a
 # small cluster is always represented, together with the spread of that mean. The subsamples are seeded
@@ -146,7 +149,7 @@ assert abs(fit.silhouette - exact) < 3 * est.sd / np.sqrt(est.repeats), "text: e
 # it writes the per-trial table as `trials.parquet` beside `results.json`.
 #
 # Beyond one machine the corpus is a folder of Parquet files, each holding whole trials: the partitions.
-# [`skilllib.partitions`](#skilllib.partitions.corpus_features) runs on every partition, on a worker of a
+# [`skilllib.features`](#skilllib.features.corpus_features) runs on every partition, on a worker of a
 # Dask cluster, the same functions as the in-memory path. What the in-memory path decides over the whole
 # file is decided here over the whole corpus, from small per-partition summaries:
 #

@@ -3,9 +3,10 @@
     .venv/bin/python scripts/api_page.py                  # print the page for skilllib
     .venv/bin/python scripts/api_page.py --out api.md     # write it (scripts/build_site.py does, at build time)
 
-What is listed: every public module of the package (no leading underscore, not ``__main__``), and in each
-its public functions and classes (``__all__`` when the module has one, otherwise the public names it
-defines), with the public methods and properties of each class. Every entry has a label
+What is listed: every public module of the package (no leading underscore, not ``__main__``): its
+sub-packages, each the public face of its private modules, and in each its public functions and classes
+(``__all__`` when the module has one, otherwise the public names it defines; a name defined in a private
+module ``skilllib.robot._velocity`` is documented in ``skilllib.robot``), with the public methods and properties of each class. Every entry has a label
 ``<module>.<name>`` (e.g. ``skilllib.smoothness.sparc``) that chapters cross-reference with
 ``[`skilllib.sparc`](#skilllib.smoothness.sparc)``, its signature (``inspect``), the units its docstring
 states, and the docstring itself.
@@ -73,6 +74,17 @@ def public_modules(package: str) -> list[str]:
     return sorted(names, key=lambda n: (n != package, n.count("."), n))
 
 
+def home(obj) -> str | None:
+    """The public module that documents ``obj``: its defining module without the private part
+    (``skilllib.recordings._csv`` -> ``skilllib.recordings``, a sub-package's public face)."""
+    module = getattr(obj, "__module__", None)
+    if module is None:
+        return None
+    parts = module.split(".")
+    cut = next((i for i, p in enumerate(parts) if p.startswith("_")), len(parts))
+    return ".".join(parts[:cut])
+
+
 def _is_member(obj) -> bool:
     return inspect.isfunction(obj) or inspect.isclass(obj)
 
@@ -88,7 +100,7 @@ def collect(package: str) -> list[ModuleDoc]:
             obj = getattr(module, name, None)
             if not _is_member(obj):
                 continue
-            if getattr(obj, "__module__", None) != modname:
+            if home(obj) != modname:
                 if modname == package or name in (getattr(module, "__all__", None) or ()):
                     reexports.append((name, obj))
                 continue
@@ -102,7 +114,7 @@ def collect(package: str) -> list[ModuleDoc]:
             entries.append(entry)
         docs.append(ModuleDoc(modname, module, entries, reexports))
     for doc in docs:  # names re-exported from another module link to where they are documented
-        doc.reexports = [(n, defined.get(id(o), f"{o.__module__}.{n}")) for n, o in doc.reexports]
+        doc.reexports = [(n, defined.get(id(o), f"{home(o)}.{n}")) for n, o in doc.reexports]
     return docs
 
 

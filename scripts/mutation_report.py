@@ -46,15 +46,9 @@ def mutmut_results(where: Path = ROOT) -> dict[str, str]:
     return {m["name"]: m["status"] for m in map(LINE.match, out.splitlines()) if m}
 
 
-#: Modules split from one of issue 11's six since it was filed, reported with it.
-PARENT = {"_spectral": "smoothness", "csvtable": "data", "timing": "data", "ik": "transfer", "summary": "pipeline",
-          "output": "pipeline"}
-
-
 def module_of(name: str) -> str:
-    """``skilllib.pipeline.x_run__mutmut_3`` -> ``pipeline`` (split-off modules with their parent: PARENT)."""
-    module = name.split(".")[1]
-    return PARENT.get(module, module)
+    """``skilllib.pipeline._run.x_run__mutmut_3`` -> ``pipeline``: mutants are reported per sub-package."""
+    return name.split(".")[1]
 
 
 def wilson(k: int, n: int, z: float = Z95) -> tuple[float, float]:

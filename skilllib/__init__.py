@@ -1,59 +1,44 @@
 """skilllib: smoothness-based prototypical task executions and their transfer to robot arms.
 
-The companion library of the executable book reproducing Maldonado & Zetzsche (KI 2020). One module
-per idea: :mod:`~skilllib.smoothness` (SPARC, LDLJ), :mod:`~skilllib.cohort` (the synthetic
-experiment), :mod:`~skilllib.data` (the recordings format), :mod:`~skilllib.features` (segmentation and
-per-trial features), :mod:`~skilllib.prototypes` (silhouettes, K-means prototypes),
-:mod:`~skilllib.robots` and :mod:`~skilllib.transfer` (joint velocities on an arm),
-:mod:`~skilllib.workspace` and :mod:`~skilllib.ik` (reach and inverse kinematics),
-:mod:`~skilllib.dynamics`, :mod:`~skilllib.execution` and :mod:`~skilllib.feasibility` (accelerations,
-torques, every limit, time scaling, the executed motion),
-:mod:`~skilllib.figures` and :mod:`~skilllib.pipeline` (``python -m skilllib run``); at scale
-:mod:`~skilllib.batch` (the features of many trials at once), :mod:`~skilllib.silhouette` (exact or
-estimated), :mod:`~skilllib.columnar` (Parquet), :mod:`~skilllib.trialtable` (trials.parquet) and
-:mod:`~skilllib.partitions` (a Dask cluster).
+The companion library of the executable book reproducing Maldonado & Zetzsche (KI 2020). One
+sub-package per step of the paper's pipeline, each importing only those above it in this list:
 
-Every name is loaded on first use (PEP 562), so that ``import skilllib`` and ``python -m skilllib
---help`` do not pay for importing pandas, scikit-learn, roboticstoolbox or matplotlib.
+* :mod:`skilllib.smoothness`: SPARC and LDLJ (the paper's Eq. 1);
+* :mod:`skilllib.recordings`: every input (CSV, Parquet, C3D, TRC, folders) as one validated
+  :class:`~skilllib.recordings.Recordings`;
+* :mod:`skilllib.features`: filtering, onset and contact, the segment, the per-trial features, selection;
+* :mod:`skilllib.prototypes`: silhouettes, K-means prototypes, stability, sensitivity, participants;
+* :mod:`skilllib.robot`: arms and their limits, reach, IK, the velocity transfer, dynamics, execution;
+* :mod:`skilllib.cohort`: the book's synthetic cohort (generative model, calibration);
+* :mod:`skilllib.figures`: the figures of the pipeline and of the chapters;
+* :mod:`skilllib.pipeline`: :func:`~skilllib.pipeline.run` (``python -m skilllib run``), results.json,
+  the output folder;
+
+and :mod:`skilllib.datasets`, the data shipped with the package. ``import skilllib as sk`` is the
+chapters' front door: ``sk.sparc``, ``sk.load_recordings``, ``sk.trial_features``, ... Every name is
+loaded on first use (``lazy_loader``), so that ``import skilllib`` and ``python -m skilllib --help`` do
+not pay for importing pandas, scikit-learn, roboticstoolbox or matplotlib.
 """
-from __future__ import annotations
 
-import importlib
-from typing import Any
+import lazy_loader as _lazy
 
 __version__ = "0.2.0"
 
-#: public name -> the submodule that defines it
-_LAZY = {
-    **dict.fromkeys(["sparc", "sparc_many", "sparc_spectrum", "sparc_bands", "SparcSpectrum", "ldlj",
-                     "ldlj_many", "SPARC_PARAMS", "minimum_jerk_speed"], "smoothness"),
-    **dict.fromkeys(["read_recordings", "write_recordings", "DataFormatError"], "data"),
-    **dict.fromkeys(["trial_features", "select", "segment"], "features"),
-    **dict.fromkeys(["fit_prototypes", "silhouette_sweep", "PrototypeResult", "SilhouetteSweep",
-                     "seed_stability", "bootstrap_stability"], "prototypes"),
-    **dict.fromkeys(["simple6", "DEFAULT_POSE_DEG", "get_robot"], "robots"),
-    **dict.fromkeys(["TransferResult", "transfer_summary", "time_scale_factor", "apply_time_scale",
-                     "EXP_TO_BASE"], "transfer"),
-}
-
-#: the submodules, importable as attributes (``skilllib.cohort``) after ``import skilllib``
-_SUBMODULES = {"smoothness", "cohort", "calibration", "data", "datasets", "duration", "features", "filtering",
-               "participants", "pipeline", "prototypes", "robots", "sensitivity", "transfer", "figures",
-               "batch", "checks", "columnar", "kinematics", "partitions", "ragged", "silhouette", "trialtable"}
-
-
-def __getattr__(name: str) -> Any:
-    if name in _LAZY:
-        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    if name in _SUBMODULES:
-        return importlib.import_module(f".{name}", __name__)
-    raise AttributeError(f"module 'skilllib' has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted({*globals(), *_LAZY, *_SUBMODULES})
-
-
-__all__ = ["__version__", *_LAZY]
+__getattr__, __dir__, _names = _lazy.attach(
+    __name__,
+    submodules=["smoothness", "recordings", "features", "prototypes", "robot", "cohort", "figures",
+                "pipeline", "datasets"],
+    submod_attrs={
+        "smoothness": ["sparc", "sparc_many", "sparc_spectrum", "sparc_bands", "SparcSpectrum", "ldlj",
+                       "ldlj_many", "SPARC_PARAMS", "minimum_jerk_speed"],
+        "recordings": ["Recordings", "load_recordings", "read_recordings", "write_recordings",
+                       "DataFormatError"],
+        "features": ["trial_features", "select", "segment"],
+        "prototypes": ["fit_prototypes", "silhouette_sweep", "PrototypeResult", "SilhouetteSweep",
+                       "seed_stability", "bootstrap_stability"],
+        "robot": ["simple6", "DEFAULT_POSE_DEG", "get_robot", "transfer", "TransferResult",
+                  "transfer_summary", "time_scale_factor", "apply_time_scale", "EXP_TO_BASE"],
+        "pipeline": ["run"],
+    },
+)
+__all__ = ["__version__", *_names]

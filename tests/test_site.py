@@ -728,7 +728,7 @@ def test_api_page_lists_every_public_function_with_its_units():
         heading = ids[dotted.replace(".", "-").replace("_", "-").lower()]
         return [c.get_text() for c in heading.find_next("strong", string="Units:").parent.find_all("code")]
     assert {"m/s", "Hz"} <= set(units_of("skilllib.smoothness.sparc"))
-    assert "rad/s" in units_of("skilllib.transfer.transfer")
+    assert "rad/s" in units_of("skilllib.robot.transfer")
     assert {"m", "s"} <= set(units_of("skilllib.smoothness.minimum_jerk_speed"))
     # docstrings rendered, not shown as reST source or as docutils error messages
     text = page.article.get_text(" ")

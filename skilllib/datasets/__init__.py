@@ -11,5 +11,5 @@ from pathlib import Path
 
 
 def cohort_path() -> Path:
-    """The synthetic cohort's CSV file (10 participants x 150 trials at 60 Hz; format :mod:`skilllib.data`)."""
+    """The synthetic cohort's CSV file (10 participants x 150 trials at 60 Hz; format :mod:`skilllib.recordings`)."""
     return Path(str(files(__name__) / "cohort.csv"))

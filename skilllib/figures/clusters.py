@@ -6,7 +6,7 @@ import numpy as np
 import pandas as pd
 
 from ..prototypes import PrototypeResult, SilhouetteSweep
-from ..sensitivity import SparcSensitivity
+from ..prototypes import SparcSensitivity
 from ._common import CLUSTER_COLORS
 
 
@@ -132,7 +132,7 @@ def plot_stability(ari: dict[str, np.ndarray], seed: int = 0) -> plt.Figure:
 def plot_sparc_sensitivity(sens: SparcSensitivity) -> plt.Figure:
     """Left: each selected trial's SPARC under every other setting against the reference setting
     (identity dashed; trials whose band that setting's fc ended drawn as rings). Right: average silhouette
-    against k under every setting. ``sens``: :func:`skilllib.sensitivity.sparc_sensitivity`."""
+    against k under every setting. ``sens``: :func:`skilllib.prototypes.sparc_sensitivity`."""
     fig, (a, b) = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained")
     ref = sens.reference.selected["sparc"].to_numpy()
     for i, run in enumerate(sens.runs[1:], start=1):
@@ -159,7 +159,7 @@ def plot_sparc_sensitivity(sens: SparcSensitivity) -> plt.Figure:
 
 def plot_cluster_participants(table: pd.DataFrame) -> plt.Figure:
     """Trials per cluster (rows, 0 = lowest centre PV) and participant (columns) as a heat map with the
-    counts written in; ``table`` as :func:`skilllib.participants.cluster_participant_table` (its ``all``
+    counts written in; ``table`` as :func:`skilllib.prototypes.cluster_participant_table` (its ``all``
     totals are left out)."""
     t = table.drop(index="all", columns="all", errors="ignore")
     fig, ax = plt.subplots(figsize=(1.2 + 0.55 * t.shape[1], 0.9 + 0.45 * t.shape[0]), layout="constrained")

@@ -7,8 +7,8 @@ from collections.abc import Callable, Mapping, Sequence
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ..dynamics import LIMIT_NAMES, JointDynamics
-from ..feasibility import Assessment
+from ..robot import LIMIT_NAMES, JointDynamics
+from ..robot import Assessment
 from ..smoothness import sparc
 from .robot import JOINT_COLORS
 
@@ -77,7 +77,7 @@ def plot_joint_accelerations(dyns: Sequence[JointDynamics], titles: Sequence[str
                              ncols: int = 3) -> plt.Figure:
     """Joint accelerations qdd_j(t) (rad/s^2) of each trajectory against time (s), one panel each, with the
     acceleration limits dashed (when the arm has them); the title gives the peak and the stretch s_a the
-    limits ask for alone. qdd = J^+ (a - Jdot qd) (+ the pseudo-inverse's null-space term; skilllib.dynamics)."""
+    limits ask for alone. qdd = J^+ (a - Jdot qd) (+ the pseudo-inverse's null-space term; skilllib.robot)."""
     def describe(d: JointDynamics) -> str:
         s_a = d.time_scales()["acceleration"]
         peak = np.nanmax(d.peak_abs_qdd)

@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.collections import LineCollection
 
-from ..data import Recordings, sort_ids
+from ..recordings import Recordings, sort_ids
 from ..features import CONTACT_WINDOW, ONSET_SPEED, velocity
 from ..smoothness import DEFAULT_AMP_TH
 

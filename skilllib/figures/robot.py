@@ -9,8 +9,8 @@ from matplotlib.ticker import MaxNLocator
 with plt.rc_context():  # roboticstoolbox's PyPlot backend sets the ggplot style globally on import;
     import roboticstoolbox.backends.PyPlot.PyPlot  # noqa: F401  the context undoes that.
 
-from ..robots import DEFAULT_POSE_DEG, default_pose, joint_origins, simple6
-from ..transfer import EXP_TO_BASE, TransferResult
+from ..robot import DEFAULT_POSE_DEG, default_pose, joint_origins, simple6
+from ..robot import EXP_TO_BASE, TransferResult
 
 
 #: Colours of the joints q1..q7 in the transfer figures.

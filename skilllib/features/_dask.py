@@ -1,0 +1,260 @@
+"""The features of a partitioned Parquet dataset on a Dask cluster (``--workers N``, ``--scheduler ADDRESS``).
+
+A corpus too large for one machine's memory is a folder of Parquet files (:mod:`skilllib.recordings`), each
+holding whole trials: a partition. Every partition is processed on a worker of a ``distributed`` cluster
+by the functions of the in-memory path (:func:`skilllib.recordings.recordings_from_frame`,
+:func:`skilllib.features.trial_features`); only per-trial numbers travel to the client. What the in-memory
+path decides over the whole file is decided here over the whole corpus, from the partitions' summaries,
+so the feature table is the same (tested on a ``LocalCluster``):
+
+1. **rates**: each partition's usable trials' median and regular mean intervals, spans and 95th
+   percentile steps; the client takes the corpus's sampling interval and checks rates and units
+   (:func:`skilllib.recordings.corpus_rate`, :func:`skilllib.recordings.check_corpus_units`) and that no trial
+   lies in two partitions;
+2. **noise at rest**: each partition's per-trial estimates (:func:`skilllib.features.rest_noise_many`'s
+   median is taken over all of them) decide the low-pass filter of ``--lowpass auto``; when it filters,
+   the residual analysis reads the same trials as in memory (every k-th approach of the corpus);
+3. **features**: each partition's feature table with the corpus's rate and filter, concatenated in
+   partition order.
+
+Clustering and transfer then run on the client on the gathered table, as in memory; the prototypes'
+samples are read from their partitions. ``--workers N`` starts a ``distributed.LocalCluster`` of N
+single-threaded worker processes; ``--scheduler ADDRESS`` connects to a running scheduler (README:
+``dask scheduler`` and ``dask worker`` on the nodes, dask-jobqueue on a batch system, dask-kubernetes).
+The workers need skilllib installed and the dataset's path readable at the same place.
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from . import _vectorised as batch
+from ..recordings import check_corpus_units, corpus_rate
+from ..recordings import is_parquet, parquet_files, read_parquet
+from ..recordings import COLUMNS, DataFormatError, Recordings, natural_key, recordings_from_frame
+from ._table import trial_features
+from ._filtering import SPEED_NOISE_LIMIT, Lowpass, choose_lowpass, residual_trials, speed_noise
+from ._segmentation import MIN_DIFF_WINDOW, diff_window
+from ..recordings import first_true
+from ..recordings import RATE_TOLERANCE
+
+
+def _recordings(path: str, rate: tuple[float, float]) -> Recordings:
+    frame, place = read_parquet(path, COLUMNS, natural_key)
+    return recordings_from_frame(frame, path, place=place, rate=rate)
+
+
+def partition_rates(path: str) -> dict[str, Any]:
+    """Step 1 on a worker: the trials' ids and the statistics the corpus's rate and units come from
+    (NaN for trials with a problem of their own)."""
+    rec = _recordings(path, (np.nan, np.nan))
+    stats = rec._cache.get("stats")
+    none = np.full(len(rec), np.nan)
+    return {"keys": rec.keys(), **{k: none if stats is None else getattr(stats, k)
+                                   for k in ("med_dt", "mean_dt", "span", "step95")}}
+
+
+def partition_noise(path: str, rate: tuple[float, float]) -> dict[str, Any]:
+    """Step 2 on a worker: the per-trial rest-noise estimates (m) and the approach lengths of the trials
+    that the filter choice reads (status ok, at least 4 samples before contact)."""
+    rec = _recordings(path, rate)
+    ok = (rec.trials["status"] == "ok").to_numpy()
+    t, pos, contact = rec.arrays()
+    runs = rec.runs()
+    length = first_true(contact, runs)
+    separate = {}
+    for i in np.flatnonzero(ok):
+        if rec.is_resampled(*rec.keys()[i]):
+            d = rec.trial(*rec.keys()[i])
+            hits = np.flatnonzero(d.contact)
+            separate[int(i)] = d.pos[:int(hits[0])] if hits.size else d.pos
+            length[i] = len(separate[int(i)])
+    picked = ok & (length >= 4)
+    est = batch.rest_noise_estimates(pos, runs, length, picked, rate_fs(rate), separate)
+    return {"picked": int(picked.sum()), "estimates": est}
+
+
+def partition_approaches(path: str, rate: tuple[float, float], which: Sequence[int]) -> list[np.ndarray]:
+    """Step 2b on a worker: the approaches (m) number ``which`` among the partition's picked trials (as
+    :func:`partition_noise` counts them), for the residual analysis."""
+    rec = _recordings(path, rate)
+    picked = []
+    for i in np.flatnonzero((rec.trials["status"] == "ok").to_numpy()):
+        d = rec.trial(*rec.keys()[i])  # resampled trials as resampled, as in memory
+        hits = np.flatnonzero(d.contact)
+        a = d.pos[:int(hits[0])] if hits.size else d.pos
+        if len(a) >= 4:
+            picked.append(a)
+    return [picked[j] for j in which]
+
+
+def partition_features(path: str, rate: tuple[float, float], lowpass: Lowpass,
+                       options: Mapping[str, Any]) -> pd.DataFrame:
+    """Step 3 on a worker: the partition's feature table (:func:`skilllib.features.trial_features`)."""
+    return trial_features(_recordings(path, rate), lowpass=lowpass, **options)
+
+
+def rate_fs(rate: tuple[float, float]) -> float:
+    return 1.0 / rate[1]
+
+
+@dataclass
+class DistributedFeatures:
+    """What :func:`corpus_features` computed: the feature table (all partitions, in order), the corpus's
+    sampling rate ``fs`` (Hz) and ``rate`` (ref, dt in s), the filter, the partition files and the
+    partition of each trial (aligned with the table)."""
+
+    features: pd.DataFrame
+    fs: float
+    rate: tuple[float, float]
+    lowpass: Lowpass
+    files: list[str]
+    partition: np.ndarray
+
+    def recordings_of(self, k: int) -> Recordings:
+        """The recordings of partition ``k``, read with the corpus's rate (on the client)."""
+        return _recordings(self.files[k], self.rate)
+
+
+def client_for(workers: int | None = None, scheduler: str | None = None):
+    """A ``distributed.Client``: to the scheduler at ``scheduler``, or to a new LocalCluster of
+    ``workers`` single-threaded worker processes (closed with the client)."""
+    from distributed import Client, LocalCluster
+
+    if scheduler:
+        return Client(scheduler)
+    cluster = LocalCluster(n_workers=int(workers or 1), threads_per_worker=1, processes=True,
+                           dashboard_address=":0")
+    client = Client(cluster)
+    client._skilllib_cluster = cluster  # closed by close_client
+    return client
+
+
+def close_client(client) -> None:
+    cluster = getattr(client, "_skilllib_cluster", None)
+    client.close()
+    if cluster is not None:
+        cluster.close()
+
+
+def corpus_features(path: str | Path, client, *, lowpass: str | float | Lowpass | None = "auto",
+                    options: Mapping[str, Any] | None = None) -> DistributedFeatures:
+    """The feature table of the Parquet folder ``path`` computed on ``client``'s cluster (module
+    docstring). ``options``: keywords of :func:`skilllib.features.trial_features` (sparc_params, window,
+    onset_speed, min_samples). Raises DataFormatError as the in-memory path does, and when a trial lies
+    in two partitions."""
+    path = Path(path)
+    files = [str(f) for f in parquet_files(path, natural_key)]
+    if not files:
+        raise DataFormatError(f"{path}: no Parquet files in this folder")
+    parts = client.gather(client.map(partition_rates, files, pure=False))
+    owner: dict[tuple[str, str], int] = {}
+    for k, p in enumerate(parts):
+        for key in p["keys"]:
+            if key in owner:
+                raise DataFormatError(f"{path}: trial {key[1]!r} of participant {key[0]!r} lies in two partitions, "
+                                      f"{Path(files[owner[key]]).name} and {Path(files[k]).name}: a partition must "
+                                      f"hold whole trials")
+            owner[key] = k
+    med = np.concatenate([p["med_dt"] for p in parts])
+    mean = np.concatenate([p["mean_dt"] for p in parts])
+    if np.isnan(med).all():
+        rate = (np.nan, np.nan)
+    else:
+        rate = corpus_rate(str(path), med, mean)
+        ok = ~np.isnan(med) & (np.abs(med / rate[0] - 1) <= RATE_TOLERANCE)  # usable and on the rate
+        span = np.concatenate([p["span"] for p in parts])
+        step = np.concatenate([p["step95"] for p in parts])
+        check_corpus_units(str(path), span[ok], step[ok] / rate[1])
+    filt = _corpus_lowpass(files, client, rate, lowpass)
+    tables = client.gather(client.map(partition_features, files, rate=rate, lowpass=filt,
+                                      options=dict(options or {}), pure=False))
+    features = pd.concat(tables, ignore_index=True)
+    features.attrs["lowpass"] = filt
+    partition = np.repeat(np.arange(len(files)), [len(t) for t in tables])
+    return DistributedFeatures(features, rate_fs(rate) if np.isfinite(rate[1]) else np.nan, rate, filt, files,
+                               partition)
+
+
+def _corpus_lowpass(files: list[str], client, rate: tuple[float, float], lowpass: Any) -> Lowpass:
+    """The filter of the run, chosen over the whole corpus as :func:`skilllib.features.run_lowpass` does."""
+    fs = rate_fs(rate) if np.isfinite(rate[1]) else np.nan
+    if isinstance(lowpass, Lowpass):
+        return lowpass
+    window = diff_window(fs) if np.isfinite(fs) else MIN_DIFF_WINDOW
+    if lowpass != "auto" or not np.isfinite(fs):
+        return choose_lowpass(lowpass, [], fs, window)
+    noise_parts = client.gather(client.map(partition_noise, files, rate=rate, pure=False))
+    counts = [p["picked"] for p in noise_parts]
+    if not sum(counts):
+        return choose_lowpass("auto", [], fs, window)
+    est = np.concatenate([p["estimates"] for p in noise_parts])
+    noise = float(np.median(est)) if est.size else 0.0
+    offsets = np.cumsum([0, *counts])
+    approaches: dict[int, np.ndarray] = {}
+    if speed_noise(noise, fs, window) > SPEED_NOISE_LIMIT:  # the residual analysis will read these trials
+        wanted = list(residual_trials(int(offsets[-1])))
+        part = np.searchsorted(offsets, wanted, side="right") - 1
+        for k in np.unique(part):
+            local = [int(j - offsets[k]) for j, q in zip(wanted, part) if q == k]
+            got = client.submit(partition_approaches, files[k], rate, local, pure=False).result()
+            approaches.update({int(offsets[k]) + j: a for j, a in zip(local, got)})
+
+    class Approaches(Sequence):  # the corpus's picked approaches; only those the analysis reads are here
+        def __len__(self) -> int:
+            return int(offsets[-1])
+
+        def __getitem__(self, j):
+            return approaches[int(j)]
+
+    return choose_lowpass("auto", Approaches(), fs, window, noise=noise)
+
+
+
+class PartitionedRecordings:
+    """Stands for the recordings of a corpus computed on the cluster: its sampling rate ``fs`` (Hz),
+    ``source``, and the segment of any trial, read on the client from the partition that holds it."""
+
+    def __init__(self, result: DistributedFeatures, source: str) -> None:
+        self.result, self.fs, self.source = result, result.fs, source
+        f = result.features
+        self._where = dict(zip(zip(f["participant"], f["trial"]), result.partition))
+
+    def segment(self, participant: Any, trial: Any, lowpass: Lowpass | None = None):
+        """The segment of one trial (:func:`skilllib.features.segment` on its partition's recordings)."""
+        from ._table import segment
+
+        k = int(self._where[(str(participant), str(trial))])
+        return segment(self.result.recordings_of(k), participant, trial, lowpass=lowpass)
+
+
+class ClusterOptionError(ValueError):
+    """An option the cluster path does not take (the pipeline reports it as an option error)."""
+
+
+def cluster_features(data: Any, workers: int | None, scheduler: str | None, *, lowpass: Any,
+                     sparc_params: Mapping[str, float], read_options: Mapping[str, Any] | None = None,
+                     variants: Sequence[Any] = ()) -> tuple[PartitionedRecordings, pd.DataFrame]:
+    """The run's features on a cluster (``--workers``/``--scheduler``): the recordings' stand-in and the
+    feature table. The client (and a LocalCluster it started) is closed before returning. ValueError
+    (:class:`ClusterOptionError`) for what the cluster path does not take; DataFormatError (also a
+    ValueError) for the data."""
+    if data is None or not isinstance(data, (str, Path)) or not Path(data).is_dir() or not is_parquet(data):
+        raise ClusterOptionError("--workers and --scheduler need --data a folder of Parquet files (each holding "
+                                 "whole trials; benchmarks/corpus.py --parquet writes one)")
+    if any(v is not None for v in dict(read_options or {}).values()) or variants:
+        raise ClusterOptionError("--workers and --scheduler read the recordings format as it is: no --columns, "
+                                 "--units, ... and no --sensitivity")
+    if workers is not None and (isinstance(workers, bool) or int(workers) < 1):
+        raise ClusterOptionError(f"workers must be a number of worker processes >= 1, got {workers!r}")
+    client = client_for(workers, scheduler)
+    try:
+        result = corpus_features(data, client, lowpass=lowpass, options={"sparc_params": dict(sparc_params)})
+    finally:
+        close_client(client)
+    return PartitionedRecordings(result, str(data)), result.features

@@ -1,0 +1,257 @@
+"""Speed, onset/contact segmentation, per-trial features and the paper's selection (KI 2020, Sect. 5).
+
+For every trial of :class:`skilllib.recordings.Recordings`:
+
+* **speed** (m/s): norm of the velocity obtained by differentiating the positions over the samples
+  *before* contact only, with a Savitzky-Golay derivative (quadratic fit, ``scipy.signal.savgol_filter``)
+  over a window of fixed duration, :data:`DIFF_SPAN_S` = 2/60 s. At the experiment's 60 Hz that window is
+  3 samples, and the estimate is exactly the second-order finite difference (central inside, one-sided
+  three-point at the ends, as ``numpy.gradient(edge_order=2)``). The Phantom's own velocity signal is
+  noisy (field notes), so positions are differentiated. No further low-pass filter: at the device's
+  position resolution (about 0.03 mm) the velocity noise at 60 Hz is about ``0.03 mm * 60 Hz / sqrt(2)`` =
+  1.3 mm/s per axis (the 3-D speed of pure noise has a median about 1.5 times that, about 2 mm/s), a few
+  thousandths of a typical peak speed; SPARC only reads the spectrum above 5 % of its maximum
+  and below its adaptive cut-off (Balasubramanian et al. 2015), so that noise does not reach it, while a
+  stronger filter would itself smooth the profile that SPARC measures. The span is fixed in seconds, not
+  in samples, because a difference over one sample interval amplifies position noise in proportion to
+  ``fs``: at 1 kHz a three-point difference turns 0.03 mm of noise into about 20 mm/s and onset detection
+  at 0.05 m/s fails; over 2/60 s the speed noise stays near its 60 Hz level at any rate.
+  The differentiation never uses a sample taken in contact: the impact is a velocity discontinuity and a
+  derivative across it would mix the approach with the rest on the surface.
+* **contact**: the first sample flagged ``contact == 1``; the approach is every sample before it.
+* **onset**: the first approach sample whose speed exceeds 0.05 m/s (the paper).
+* **segment**: onset to the last sample before contact, ``N`` samples; ``duration = N / fs`` (s), which is
+  the time from the onset sample to the first contact sample.
+* **features**: ``pv`` peak speed of the segment (m/s); ``contact_speed`` speed at the last sample before
+  contact (m/s; the backward (one-sided) derivative there, an estimate of the speed at that sample, which
+  lies between 0 and 1 interval before the touch); ``sparc`` (Balasubramanian et al. 2015) with
+  :data:`SPARC_PARAMS`, with ``sparc_band_end_hz`` (Hz, the last frequency of its band) and
+  ``sparc_capped`` (True when the maximum cut-off fc, not the amplitude threshold, ended the band; see
+  :func:`skilllib.smoothness.sparc_bands`); ``ldlj`` log dimensionless jerk (Balasubramanian et al. 2015).
+* **selection**: ``0.3 <= contact_speed <= 0.7`` m/s (the paper: 650 of 1500 trials).
+
+Every trial stays in the table: ``status`` is ``selected``, ``excluded`` (outside the window, with the
+reason) or ``invalid`` (cannot be segmented or bad samples, with the reason; features NaN).
+"""
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from . import _vectorised as batch
+from .. import smoothness
+from ..recordings import Recordings, recordings_from_frame, sort_ids
+from ..recordings import first_true
+from ._filtering import Lowpass, choose_lowpass
+from ._segmentation import (
+    CONTACT_WINDOW,
+    MIN_DIFF_WINDOW,
+    MIN_SEGMENT_SAMPLES,
+    ONSET_SPEED,
+    Segment,
+    diff_window,
+    segment_arrays,
+    velocity,
+)
+
+#: SPARC settings of the SPARC chapter (Balasubramanian et al. 2015 defaults): fc in Hz, amp_th, padlevel
+SPARC_PARAMS: dict[str, float] = dict(smoothness.SPARC_PARAMS)
+FEATURE_COLUMNS = ("participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
+                   "sparc_band_end_hz", "sparc_capped", "ldlj", "n", "t_onset", "t_contact", "resampled")
+
+
+def _as_recordings(recordings: Recordings | pd.DataFrame) -> Recordings:
+    return recordings if isinstance(recordings, Recordings) else recordings_from_frame(recordings)
+
+
+def segment(recordings: Recordings | pd.DataFrame, participant: Any, trial: Any, *,
+            onset_speed: float = ONSET_SPEED, min_samples: int = MIN_SEGMENT_SAMPLES,
+            lowpass: Lowpass | None = None) -> Segment:
+    """The segmented approach (onset to the last sample before contact) of one trial; ``lowpass`` as in
+    :func:`segment_arrays` (a run's filter: ``features.attrs["lowpass"]`` of :func:`trial_features`).
+
+    Raises KeyError for an unknown trial and ValueError, with the reason, for an invalid one.
+    """
+    rec = _as_recordings(recordings)
+    tr = rec.trial(participant, trial)
+    participant, trial = tr.participant, tr.trial
+    row = rec.trials[(rec.trials["participant"] == participant) & (rec.trials["trial"] == trial)].iloc[0]
+    if row["status"] != "ok":
+        raise ValueError(f"trial {trial!r} of participant {participant!r} is invalid: {row['reason']}")
+    seg = segment_arrays(tr.t, tr.pos, tr.contact, rec.fs, onset_speed=onset_speed, min_samples=min_samples,
+                         participant=participant, trial=trial, lowpass=lowpass)
+    if isinstance(seg, str):
+        raise ValueError(f"trial {trial!r} of participant {participant!r} cannot be segmented: {seg}")
+    return seg
+
+
+def _window_reason(v: float, window: tuple[float, float]) -> str:
+    lo, hi = window
+    if v < lo:
+        return f"contact speed {v:.3f} m/s below {lo:g} m/s"
+    if v > hi:
+        return f"contact speed {v:.3f} m/s above {hi:g} m/s"
+    return ""
+
+
+def approaches(recordings: Recordings | pd.DataFrame) -> list[np.ndarray]:
+    """The positions (m) before first contact of every usable trial (status ok), in trial order: what
+    :func:`skilllib.features.choose_lowpass` looks at to choose a cut-off."""
+    rec = _as_recordings(recordings)
+    out = []
+    for (p, tr), status in zip(rec.keys(), rec.trials["status"]):
+        if status == "ok":
+            d = rec.trial(p, tr)
+            hits = np.flatnonzero(d.contact)
+            out.append(d.pos[:int(hits[0])] if hits.size else d.pos)
+    return out
+
+
+def run_lowpass(recordings: Recordings | pd.DataFrame, lowpass: str | float | Lowpass | None = "auto") -> Lowpass:
+    """The :class:`skilllib.features.Lowpass` that ``lowpass`` (``"auto"``, ``"none"``, Hz or a Lowpass)
+    means for these recordings (``"auto"``: Winter's residual analysis over their approaches, the noise
+    at rest measured over all trials at once, :func:`skilllib.features.rest_noise_many`)."""
+    rec = _as_recordings(recordings)
+    if isinstance(lowpass, Lowpass):
+        return lowpass
+    fs = rec.fs
+    window = diff_window(fs) if np.isfinite(fs) else MIN_DIFF_WINDOW
+    if lowpass != "auto":
+        return choose_lowpass(lowpass, [], fs, window)
+    keys, runs = rec.keys(), rec.runs()
+    t, pos, contact = rec.arrays()
+    ok = (rec.trials["status"] == "ok").to_numpy()
+    length = first_true(contact, runs)  # the approach: rows before the first contact (all without one)
+    separate = {}
+    for i in np.flatnonzero(ok):
+        if rec.is_resampled(*keys[i]):
+            d = rec.trial(*keys[i])
+            hits = np.flatnonzero(d.contact)
+            separate[int(i)] = d.pos[:int(hits[0])] if hits.size else d.pos
+            length[i] = len(separate[int(i)])
+    picked = np.flatnonzero(ok & (length >= 4))
+    if not picked.size or not np.isfinite(fs):
+        return choose_lowpass("auto", [], fs, window)
+    noise = batch.rest_noise_many(pos, runs, length, ok & (length >= 4), fs, separate)
+
+    class Approaches(Sequence):  # read only by the residual analysis, for at most 100 trials
+        def __len__(self) -> int:
+            return len(picked)
+
+        def __getitem__(self, j):
+            i = int(picked[j])
+            return separate[i] if i in separate else pos[runs.start[i]:runs.start[i] + length[i]]
+
+    return choose_lowpass("auto", Approaches(), fs, window, noise=noise)
+
+
+def trial_features(recordings: Recordings | pd.DataFrame, *, sparc_params: Mapping[str, float] | None = None,
+                   window: tuple[float, float] = CONTACT_WINDOW, onset_speed: float = ONSET_SPEED,
+                   min_samples: int = MIN_SEGMENT_SAMPLES, lowpass: str | float | Lowpass | None = "auto",
+                   progress: Callable[[Sequence[Any], str], Iterable[Any]] | None = None) -> pd.DataFrame:
+    """One row per trial of ``recordings`` (all of them, in their order) with its features and status.
+    Computed for all trials at once (:mod:`skilllib.features`), with the same values as the per-trial
+    :func:`segment_arrays`, :func:`skilllib.smoothness.ldlj` and :func:`skilllib.smoothness.sparc_bands`.
+
+    Columns: ``participant, trial, status`` (``selected`` / ``excluded`` / ``invalid``), ``reason``
+    (empty when selected), ``pv`` (m/s), ``contact_speed`` (m/s), ``duration`` (s), ``sparc``,
+    ``sparc_band_end_hz`` (Hz), ``sparc_capped`` (nullable boolean: fc ended the band), ``ldlj``, ``n``
+    (segment samples), ``t_onset``, ``t_contact`` (s, time stamps of the onset sample and of the
+    first contact sample), ``resampled`` (the trial's time stamps were irregular and it was resampled onto
+    the uniform grid, :mod:`skilllib.recordings`). Features are NaN (NA) only for invalid trials.
+    ``sparc_params`` defaults to :data:`SPARC_PARAMS`; ``window`` is the inclusive contact-speed window in
+    m/s; ``lowpass``: the positions' low-pass filter (:func:`run_lowpass`; default ``"auto"``, which does
+    not filter the book's cohort), recorded in ``attrs["lowpass"]`` of the result; ``progress(items,
+    description)`` may wrap the loop over trials (e.g. tqdm).
+    """
+    rec = _as_recordings(recordings)
+    params = {**SPARC_PARAMS, **(sparc_params or {})}
+    filt = run_lowpass(rec, lowpass)
+    trials = rec.trials
+    keys = rec.keys()
+    ok = (trials["status"] == "ok").to_numpy()
+    for _ in progress([len(keys)], "features") if progress else ():  # vectorised: the bar has one step
+        pass
+    separate = {i: rec.trial(*keys[i]) for i in np.flatnonzero(ok) if rec.is_resampled(*keys[i])}
+    t, pos, contact = rec.arrays()
+    seg = batch.segment_many(t, pos, contact, rec.runs(), rec.fs, which=ok, separate=separate,
+                             onset_speed=onset_speed, min_samples=min_samples, lowpass=filt)
+    done = seg.segmented
+    n_all = len(keys)
+    sparc = np.full(n_all, np.nan)
+    band_end = np.full(n_all, np.nan)
+    capped = pd.array([pd.NA] * n_all, dtype="boolean")
+    if seg.speeds:
+        bands = smoothness.sparc_bands(seg.speeds, rec.fs, **params)
+        sparc[done], band_end[done] = bands.sparc, bands.band_end_hz
+        capped[done] = bands.capped
+    reason = np.where(ok, seg.reason, trials["reason"].to_numpy(dtype=object)).astype(object)
+    status = np.full(n_all, "invalid", dtype=object)
+    lo, hi = window
+    cs = seg.contact_speed
+    inside = done & (cs >= lo) & (cs <= hi)
+    status[inside] = "selected"
+    status[done & ~inside] = "excluded"
+    for i in np.flatnonzero(done & ~inside):
+        reason[i] = _window_reason(cs[i], window)
+    out = pd.DataFrame({
+        "participant": np.array([k[0] for k in keys], dtype=object),
+        "trial": np.array([k[1] for k in keys], dtype=object), "status": status, "reason": reason,
+        "pv": seg.pv, "contact_speed": cs, "duration": seg.duration, "sparc": sparc,
+        "sparc_band_end_hz": band_end, "sparc_capped": capped, "ldlj": seg.ldlj,
+        "n": pd.array(np.where(done, seg.n, 0), dtype="Int64"), "t_onset": seg.t_onset,
+        "t_contact": seg.t_contact, "resampled": trials["timing"].astype(bool).to_numpy()},
+        columns=list(FEATURE_COLUMNS))
+    out.loc[~done, "n"] = pd.NA
+    out.attrs["lowpass"] = filt
+    return out
+
+
+def select(features: pd.DataFrame) -> pd.DataFrame:
+    """The selected trials (status ``selected``), index reset: the input of the clustering chapter."""
+    return features[features["status"] == "selected"].reset_index(drop=True)
+
+
+def status_counts(features: pd.DataFrame) -> pd.DataFrame:
+    """Trials per participant and status (columns selected, excluded, invalid, total), with a total row."""
+    t = pd.crosstab(features["participant"], features["status"])
+    t = t.reindex(index=sort_ids(t.index), columns=["selected", "excluded", "invalid"], fill_value=0)
+    t["total"] = t.sum(axis=1)
+    t.loc["all"] = t.sum(axis=0)
+    return t
+
+
+def participant_summary(features: pd.DataFrame) -> pd.DataFrame:
+    """Per participant, over its valid (selected or excluded) trials: median and interquartile range of
+    peak speed (m/s), contact speed (m/s), duration (s) and SPARC, and the number of selected trials."""
+    valid = features[features["status"] != "invalid"]
+    g = valid.groupby("participant", sort=True)
+    cols = {"pv": "PV (m/s)", "contact_speed": "contact speed (m/s)", "duration": "duration (s)",
+            "sparc": "SPARC"}
+    out = pd.DataFrame({"valid trials": g.size(),
+                        "selected": g["status"].agg(lambda s: int((s == "selected").sum()))})
+    for c, name in cols.items():
+        q = g[c].quantile([0.25, 0.5, 0.75]).unstack()
+        out[f"{name} median"] = q[0.5]
+        out[f"{name} IQR"] = q[0.75] - q[0.25]
+    return out.reindex(sort_ids(out.index))
+
+
+def rest_speed(recordings: Recordings | pd.DataFrame, features: pd.DataFrame, margin: float = 0.2) -> np.ndarray:
+    """Speeds (m/s) at the interior samples (central differences, as inside a segment) more than
+    ``margin`` s before onset in the valid trials: the noise floor at rest (white position noise of SD s
+    gives s * fs / sqrt(2) per axis). The margin leaves out the slow start of the movement; the first
+    sample is left out because its one-sided three-point difference amplifies noise about 3.6 times more
+    than a central difference (coefficients 3/2, -2, 1/2 against 1/2, -1/2)."""
+    rec = _as_recordings(recordings)
+    out = []
+    valid = features.loc[features["status"] != "invalid", ["participant", "trial", "t_onset"]]
+    for p, tr, t_on in valid.itertuples(index=False):
+        d = rec.trial(p, tr)
+        o = int(np.searchsorted(d.t, t_on - margin))
+        if o >= 3:
+            out.append(np.linalg.norm(velocity(d.pos[:o], rec.fs), axis=1)[1:-1])
+    return np.concatenate(out) if out else np.array([])

@@ -1,0 +1,192 @@
+"""Segmentation and features of many trials at once: the in-memory path at the speed of its core.
+
+:func:`segment_many` does for every trial what :func:`skilllib.features.segment_arrays` does for one
+(velocity by the Savitzky-Golay derivative over the approach, onset, contact, segment, the same reasons
+for a trial that cannot be segmented) and adds the per-trial features of :mod:`skilllib.features` (PV,
+contact speed, duration, LDLJ, time stamps of onset and contact); SPARC then runs over the segments
+with :func:`skilllib.smoothness.sparc_bands`, which was already batched.
+
+No Python loop per trial on the common path: trials are runs of rows of flat arrays
+(:class:`skilllib.recordings.Runs`), gathered into blocks of equal approach length (for the derivative) and
+of equal segment length (for LDLJ), so every value has the same bits as the per-trial functions
+(:mod:`skilllib.recordings` explains why). Three cases go through the per-trial function instead, one trial
+at a time: an approach shorter than the differentiating window (a few samples; the window shrinks for
+it), a run with a low-pass filter (the filter runs per trial), and segments of fewer than 3 samples
+(LDLJ raises there, as it does per trial). ``scipy.signal.savgol_filter`` fits the first and last
+samples of windows of 9 or more samples (rates of 240 Hz and above) with a least-squares solve whose
+last bits depend on how many profiles are solved together: there the edge velocities agree with the
+per-trial ones to about 1e-15 relative, not bit for bit.
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from scipy.signal import savgol_filter
+
+from .. import smoothness
+from ._filtering import REST_NOISE_SCALE, Lowpass, rest_samples
+from ._segmentation import (
+    MIN_APPROACH_SAMPLES,
+    MIN_SEGMENT_SAMPLES,
+    NO_CONTACT,
+    ONSET_SPEED,
+    diff_window,
+    in_contact_reason,
+    no_onset_reason,
+    no_rest_reason,
+    segment_arrays,
+    too_short_reason,
+)
+from ..recordings import Runs, first_true
+
+
+@dataclass(frozen=True, eq=False)
+class SegmentedTrials:
+    """Per trial (aligned with the runs): ``reason`` ("" when segmented), ``onset`` and ``contact``
+    (indices within the trial; -1 when unknown), ``n`` (segment samples, 0 when not segmented), ``pv`` and
+    ``contact_speed`` (m/s), ``duration`` (s), ``ldlj``, ``t_onset`` and ``t_contact`` (s; NaN when not
+    segmented); ``speeds``: the segments' speed profiles (m/s) of the segmented trials, in trial order."""
+
+    reason: np.ndarray
+    onset: np.ndarray
+    contact: np.ndarray
+    n: np.ndarray
+    pv: np.ndarray
+    contact_speed: np.ndarray
+    duration: np.ndarray
+    ldlj: np.ndarray
+    t_onset: np.ndarray
+    t_contact: np.ndarray
+    speeds: list[np.ndarray]
+
+    @property
+    def segmented(self) -> np.ndarray:
+        """Bool per trial: it was segmented (its features are set)."""
+        return self.n > 0
+
+
+def _blank(n_trials: int) -> dict[str, np.ndarray]:
+    nan = np.full(n_trials, np.nan)
+    return {"reason": np.full(n_trials, "", dtype=object), "onset": np.full(n_trials, -1, np.int64),
+            "contact": np.full(n_trials, -1, np.int64), "n": np.zeros(n_trials, np.int64), "pv": nan.copy(),
+            "contact_speed": nan.copy(), "duration": nan.copy(), "ldlj": nan.copy(), "t_onset": nan.copy(),
+            "t_contact": nan}
+
+
+def segment_many(t: np.ndarray, pos: np.ndarray, contact: np.ndarray, runs: Runs, fs: float, *,
+                 which: np.ndarray | None = None, separate: Mapping[int, Any] | None = None, onset_speed: float = ONSET_SPEED,
+                 min_samples: int = MIN_SEGMENT_SAMPLES, lowpass: Lowpass | None = None) -> SegmentedTrials:
+    """Segment every trial of ``runs`` (rows of ``t`` (R,) s, ``pos`` (R, 3) m, ``contact`` (R,) bool)
+    sampled at ``fs`` Hz, as :func:`skilllib.features.segment_arrays` does one by one, and compute its
+    features. ``which``: bool mask of the trials to segment (others keep an empty reason and no features:
+    the caller's invalid trials); ``separate``: trials whose samples are given apart from the flat arrays
+    (objects with ``t``, ``pos``, ``contact``: resampled trials), segmented one by one. ``lowpass`` as in
+    segment_arrays."""
+    n_trials = len(runs)
+    out = _blank(n_trials)
+    todo = np.ones(n_trials, bool) if which is None else np.asarray(which, bool).copy()
+    separate = dict(separate or {})
+    todo[list(separate)] = False  # their rows in the flat arrays are not the samples to use
+    c = first_true(np.asarray(contact, bool), runs)
+    none = todo & (c == runs.length)
+    out["reason"][none] = NO_CONTACT
+    early = todo & ~none & (c < MIN_APPROACH_SAMPLES)
+    for i in np.flatnonzero(early):
+        out["reason"][i] = in_contact_reason(int(c[i]))
+    rest = todo & ~none & ~early
+    filtered = lowpass is not None and lowpass.cutoff_hz is not None
+    w = diff_window(fs) if np.isfinite(fs) else 0  # fs is unknown only when no trial is usable
+    fast = rest & (c >= w) & (not filtered)
+    seg_speed: dict[int, np.ndarray] = {}
+    for trials, rows in runs.blocks(fast, length=c):
+        _segment_block(out, seg_speed, trials, rows, t, pos, fs, w, onset_speed, min_samples)
+    one_by_one = [(int(i), None) for i in np.flatnonzero(rest & ~fast) if int(i) not in separate]
+    for i, samples in [*one_by_one, *separate.items()]:  # short approaches, filtered runs, resampled trials
+        r = slice(runs.start[i], runs.start[i] + runs.length[i])
+        ti, pi, ci = (t[r], pos[r], contact[r]) if samples is None else (samples.t, samples.pos, samples.contact)
+        seg = segment_arrays(ti, pi, ci, fs, onset_speed=onset_speed, min_samples=min_samples, lowpass=lowpass)
+        if isinstance(seg, str):
+            out["reason"][i] = seg
+            continue
+        v = seg.speed
+        out["onset"][i], out["contact"][i], out["n"][i] = seg.onset, seg.contact, len(v)
+        out["pv"][i], out["contact_speed"][i], out["duration"][i] = v.max(), v[-1], seg.duration
+        out["t_onset"][i], out["t_contact"][i] = ti[seg.onset], ti[seg.contact]
+        seg_speed[int(i)] = v
+    _ldlj_by_length(out, seg_speed, fs)
+    order = sorted(seg_speed)
+    return SegmentedTrials(**out, speeds=[seg_speed[i] for i in order])
+
+
+def _segment_block(out: dict[str, np.ndarray], seg_speed: dict[int, np.ndarray], trials: np.ndarray,
+                   rows: np.ndarray, t: np.ndarray, pos: np.ndarray, fs: float, w: int, onset_speed: float,
+                   min_samples: int) -> None:
+    """Trials whose approaches have the same length c (``rows``: (K, c) rows of the approaches)."""
+    c = rows.shape[1]
+    vel = savgol_filter(pos[rows], w, polyorder=2, deriv=1, delta=1.0 / fs, axis=1, mode="interp")
+    speed = np.linalg.norm(vel, axis=2)  # (K, c) m/s
+    moving = speed > onset_speed
+    has = moving.any(axis=1)
+    o = np.where(has, moving.argmax(axis=1), -1)
+    n = c - o
+    for k in np.flatnonzero(~has):
+        out["reason"][trials[k]] = no_onset_reason(onset_speed, speed[k].max())
+    for k in np.flatnonzero(has & (o == 0)):
+        out["reason"][trials[k]] = no_rest_reason(onset_speed, speed[k, 0])
+    for k in np.flatnonzero(has & (o > 0) & (n < min_samples)):
+        out["reason"][trials[k]] = too_short_reason(int(n[k]), min_samples)
+    ok = np.flatnonzero(has & (o > 0) & (n >= min_samples))
+    if ok.size == 0:
+        return
+    i, o, n = trials[ok], o[ok], n[ok]
+    sp = speed[ok]
+    in_seg = np.arange(c)[None, :] >= o[:, None]
+    out["onset"][i], out["contact"][i], out["n"][i] = o, c, n
+    out["pv"][i] = np.where(in_seg, sp, -np.inf).max(axis=1)
+    out["contact_speed"][i] = sp[:, -1]
+    out["duration"][i] = n / float(fs)
+    out["t_onset"][i] = t[rows[ok, 0] + o]
+    out["t_contact"][i] = t[rows[ok, 0] + c]
+    for k, trial in enumerate(i):
+        seg_speed[int(trial)] = sp[k, o[k]:]
+
+
+def _ldlj_by_length(out: dict[str, np.ndarray], seg_speed: dict[int, np.ndarray], fs: float) -> None:
+    """LDLJ of every segment, in blocks of equal length (:func:`skilllib.smoothness.ldlj` row by row);
+    segments of fewer than 3 samples go to ldlj itself, which says why it cannot compute them."""
+    by_n: dict[int, list[int]] = {}
+    for i, v in seg_speed.items():
+        by_n.setdefault(len(v), []).append(i)
+    for n, trials in by_n.items():
+        if n < 3:
+            for i in trials:
+                out["ldlj"][i] = smoothness.ldlj(seg_speed[i], fs)
+            continue
+        out["ldlj"][trials] = smoothness.ldlj_rows(np.stack([seg_speed[i] for i in trials]), fs)
+
+
+def rest_noise_estimates(pos: np.ndarray, runs: Runs, approach_len: np.ndarray, which: np.ndarray, fs: float,
+                         separate: Mapping[int, np.ndarray] | None = None) -> np.ndarray:
+    """The per-trial estimates (m) whose median is :func:`skilllib.features.rest_noise`, of the
+    approaches of the ``which`` trials long enough for it: the first ``approach_len[i]`` rows of run
+    ``i`` of ``pos`` (R, 3) m, or ``separate[i]`` (the approach's positions, for resampled trials)."""
+    n = rest_samples(fs)
+    separate = dict(separate or {})
+    use = np.asarray(which, bool) & (approach_len >= n)
+    use[list(separate)] = False
+    est = [np.median(np.abs(np.diff(pos[rows], 4, axis=1)).reshape(len(trials), -1), axis=1) / REST_NOISE_SCALE
+           for trials, rows in runs.blocks(use, length=np.full(len(runs), n))]
+    est += [np.array([np.median(np.abs(np.diff(a[:n], 4, axis=0))) / REST_NOISE_SCALE])
+            for a in separate.values() if len(a) >= n]
+    return np.concatenate(est) if est else np.empty(0)
+
+
+def rest_noise_many(pos: np.ndarray, runs: Runs, approach_len: np.ndarray, which: np.ndarray, fs: float,
+                    separate: Mapping[int, np.ndarray] | None = None) -> float:
+    """:func:`skilllib.features.rest_noise` (m) of the approaches of the ``which`` trials (the median of
+    :func:`rest_noise_estimates`; 0 when no approach is long enough): the same value."""
+    est = rest_noise_estimates(pos, runs, approach_len, which, fs, separate)
+    return float(np.median(est)) if est.size else 0.0

@@ -1,0 +1,433 @@
+"""The whole pipeline of the paper on one recordings file: ``python -m skilllib run``.
+
+Steps (each a skilllib function the chapters also call): read and validate the recordings
+(:mod:`skilllib.recordings`); segment every trial and compute its features, status and reason
+(:mod:`skilllib.features`); silhouette sweep and K-means prototypes on the selected trials' (PV, SPARC)
+tuples (:mod:`skilllib.prototypes`); joint velocities of every prototype on a robot arm
+(:mod:`skilllib.robot`), its accelerations, torques, limits, time scaling and executed motion
+(:mod:`skilllib.robot`). :func:`run` returns the results dictionary that is
+written to ``results.json`` (schema in README) and writes the figures beside it.
+"""
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from .. import __version__
+from .. import prototypes as pt
+from ..recordings import is_parquet
+from ..recordings import Recordings, read_recordings, recordings_from_frame
+from ..datasets import cohort_path
+from ..robot import Assessment, assess, resolve_limits, transfer_block
+from ..features import CONTACT_WINDOW, ONSET_SPEED, run_lowpass, segment, select, trial_features
+from ..features import Lowpass, parse_lowpass
+from ._output import output_folder, write_json_atomic
+from ..robot import RobotSetup, get_robot, qd_limits_vector
+from ..prototypes import SparcSensitivity, sparc_sensitivity
+from ..smoothness import DEFAULT_AMP_TH, DEFAULT_FC, DEFAULT_PADLEVEL
+from ..robot import TransferResult, transfer
+from ._trials_file import in_json, trials_block, write_trials
+from ._trials_file import plain as _plain
+
+#: The book's synthetic cohort (default input), shipped with skilllib (:mod:`skilllib.datasets`).
+DEFAULT_DATA = cohort_path()
+
+#: Fewest selected trials the clustering step accepts (K-means with k = 2 and a silhouette need 3).
+MIN_SELECTED = 3
+
+#: The version of results.json's layout (README "results.json"): 2 since ``feasible`` and ``time_scale``
+#: cover every limit checked (in 1 they were the velocity limits', beside ``feasible_all_limits`` and
+#: ``time_scale_all_limits``).
+SCHEMA_VERSION = 2
+
+#: More trials than this fraction invalid with "no rest before onset": the summary suggests why.
+NO_REST_FRACTION = 0.2
+
+Progress = Callable[[Sequence[Any], str], Any]
+
+
+class OptionError(ValueError):
+    """An option of :func:`run` is wrong; checked before the data are read (``fc`` against the Nyquist
+    frequency of the recordings once their sampling rate is known)."""
+
+
+def _no_progress(items: Sequence[Any], desc: str) -> Sequence[Any]:
+    return items
+
+
+@dataclass
+class PipelineRun:
+    """Everything one run computed: the results dictionary and the objects behind it."""
+
+    results: dict[str, Any]
+    recordings: Recordings
+    features: pd.DataFrame
+    sweep: pt.SilhouetteSweep | None = None
+    prototypes: pt.PrototypeResult | None = None
+    transfers: list[TransferResult] = field(default_factory=list)
+    profiles: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
+    messages: list[str] = field(default_factory=list)
+    sensitivity: SparcSensitivity | None = None
+    assessments: list[Assessment] = field(default_factory=list)
+
+
+def _is_shipped_cohort(given: Any) -> bool:
+    """Whether the run's data are the book's synthetic cohort (its figures say so)."""
+    if given is None:
+        return True
+    return isinstance(given, (str, Path)) and Path(given).resolve() == DEFAULT_DATA.resolve()
+
+
+#: The line every figure of a run on the shipped cohort carries.
+SYNTHETIC_NOTE = "Synthetic data: the book's generated cohort, not the paper's recordings (which are not public)."
+
+
+def _display_path(given: Any) -> str:
+    """The data for results.json: the path as given, ``<DataFrame>``, or the shipped cohort's name."""
+    if given is None:
+        return "skilllib/datasets/cohort.csv"
+    if isinstance(given, (str, Path)):
+        return str(given)
+    return getattr(given, "source", "<DataFrame>")
+
+
+def choose_k(requested: int, sweep: pt.SilhouetteSweep) -> tuple[int, str | None]:
+    """The k to use: ``requested`` if the sweep reached it, else the largest k the data allow."""
+    largest, requested = int(sweep.ks[-1]), int(requested)
+    if requested <= largest:
+        return requested, None
+    return largest, (f"k = {requested} needs more distinct selected trials than there are; "
+                     f"using k = {largest}, the largest the data allow")
+
+
+def check_sparc_params(fc: float, amp_th: float, padlevel: int) -> dict[str, float]:
+    """The SPARC parameters as a dict (fc in Hz, amp_th, padlevel); :class:`OptionError` for a bad one."""
+    try:
+        fc, amp_th = float(fc), float(amp_th)
+    except (TypeError, ValueError):
+        raise OptionError(f"fc and amp_th must be numbers, got fc = {fc!r}, amp_th = {amp_th!r}") from None
+    if not (math.isfinite(fc) and fc > 0):
+        raise OptionError(f"fc must be a maximum cut-off frequency > 0 Hz, got {fc:g}")
+    if not 0 < amp_th < 1:
+        raise OptionError(f"amp_th must lie between 0 and 1 (a fraction of the spectrum's peak), got {amp_th:g}")
+    if isinstance(padlevel, bool) or not isinstance(padlevel, (int, np.integer)) or not 0 <= padlevel <= 10:
+        raise OptionError(f"padlevel must be an integer from 0 to 10 (nfft = 2**(ceil(log2 N) + padlevel)), "
+                          f"got {padlevel!r}")
+    return {"fc": fc, "amp_th": amp_th, "padlevel": int(padlevel)}
+
+
+#: K-means' random_state must lie in 0 .. 2**32 - 1 (numpy's legacy seeding, which scikit-learn uses).
+MAX_SEED = 2**32 - 1
+
+
+def check_options(k: int, robot: str, qd_max: Sequence[float] | float | None,
+                  scaling: str, random_state: int = 0) -> tuple[RobotSetup, np.ndarray]:
+    """The robot setup and the joint velocity limits (rad/s) for the options; :class:`OptionError` for a
+    bad one. Called before the data are read, so a wrong option fails at once."""
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or k < 2:
+        raise OptionError(f"k must be an integer of at least 2, got {k!r}")
+    if isinstance(random_state, bool) or not isinstance(random_state, (int, np.integer)) or \
+            not 0 <= random_state <= MAX_SEED:
+        raise OptionError(f"seed must be an integer from 0 to {MAX_SEED} (K-means' random_state), got {random_state!r}")
+    if scaling not in ("raw", "standard"):
+        raise OptionError(f"scaling must be 'raw' or 'standard', got {scaling!r}")
+    try:
+        setup = get_robot(robot)
+    except ValueError as e:
+        raise OptionError(str(e)) from None
+    try:
+        limits = qd_limits_vector(setup.qd_limits if qd_max is None else qd_max, setup.robot.n)
+    except ValueError as e:
+        raise OptionError(f"qd_max for {setup.robot.name} ({setup.robot.n} joints): {e}") from None
+    return setup, limits
+
+
+def check_dynamic_options(robot: str, setup: RobotSetup, qdd_max: Sequence[float] | float | None,
+                          tau_max: Sequence[float] | float | None):
+    """The acceleration and torque limits for the options (:func:`skilllib.robot.resolve_limits`);
+    :class:`OptionError` for a bad one."""
+    try:
+        return resolve_limits(robot, setup.robot, qdd_max, tau_max)
+    except ValueError as e:
+        raise OptionError(f"{e} ({setup.robot.name}, {setup.robot.n} joints)") from None
+
+
+def _check_nyquist(params: dict[str, float], fs: float) -> None:
+    """fc above the Nyquist frequency would take the band into the spectrum's mirror image."""
+    if np.isfinite(fs) and params["fc"] > fs / 2:
+        raise OptionError(f"fc = {params['fc']:g} Hz lies above the Nyquist frequency {fs / 2:g} Hz of these "
+                          f"recordings (sampled at {fs:g} Hz); choose fc <= {fs / 2:g} Hz")
+
+
+def load_input(data: str | Path | pd.DataFrame | Recordings | None = None,
+               **read_options: Any) -> Recordings:
+    """The recordings of ``data``: the shipped cohort (None), :class:`Recordings` as they are, a DataFrame
+    (validated), or a path: a CSV (compressed or not), a C3D or TRC file, or a folder of them
+    (:func:`skilllib.recordings.load_recordings`, which ``read_options`` go to: ``columns``, ``units``,
+    ``up_axis``, ``marker``, ``contact_channel``, ``contact_threshold``, ``contact_height``, ``name_pattern``)."""
+    options = {k: v for k, v in read_options.items() if v is not None}
+    if not options:
+        if data is None:
+            return read_recordings(DEFAULT_DATA)
+        if isinstance(data, Recordings):
+            return data
+        if isinstance(data, pd.DataFrame):
+            return recordings_from_frame(data)
+        path = Path(data)
+        if is_parquet(path) or not path.is_dir() and path.suffix.lower() not in (".c3d", ".trc"):
+            return read_recordings(path)
+    from .. import recordings as formats
+
+    return formats.load_recordings(DEFAULT_DATA if data is None else data, **options)
+
+
+def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | Path | None = None, *,
+        k: int = pt.DEFAULT_K, robot: str = "simple6", qd_max: Sequence[float] | float | None = None,
+        qdd_max: Sequence[float] | float | None = None, tau_max: Sequence[float] | float | None = None,
+        scaling: str = "raw", random_state: int = 0, fc: float = DEFAULT_FC, amp_th: float = DEFAULT_AMP_TH,
+        padlevel: int = DEFAULT_PADLEVEL, sensitivity: Sequence[Mapping[str, float]] | None = None,
+        lowpass: str | float | Lowpass | None = "auto", read_options: Mapping[str, Any] | None = None,
+        progress: Progress = _no_progress, write_figures: bool = True, workers: int | None = None,
+        scheduler: str | None = None) -> PipelineRun:
+    """Run the pipeline on ``data`` (default: the book's synthetic cohort) and write ``out``.
+
+    ``data``: a path (CSV, compressed CSV, C3D, TRC, or a folder of them), a pandas DataFrame in the
+    recordings format, or :class:`~skilllib.recordings.Recordings`; ``read_options``: how to read it
+    (:func:`load_input`); ``k``: clusters (the paper: 6), reduced with a message when the selected trials
+    allow fewer; ``robot``: a name of :func:`skilllib.robot.get_robot`; ``qd_max``: joint velocity limits
+    in rad/s (one for all joints or one per joint; default: the robot's); ``qdd_max`` (rad/s^2) and
+    ``tau_max`` (N m): joint acceleration and torque limits, likewise (default: the robot's,
+    :func:`skilllib.robot.dynamic_limits`); ``scaling``: "raw" (the paper) or "standard"; ``random_state``: K-means' seed (0 .. 2**32 - 1); ``fc`` (Hz, at most the Nyquist frequency
+    of the recordings), ``amp_th`` and ``padlevel``: the SPARC parameters (:func:`skilllib.smoothness.sparc`;
+    default the book's, fc = 20 Hz); ``sensitivity``: other SPARC settings (dicts of some of fc, amp_th,
+    padlevel; the rest as this run's) to compare with this run's
+    (:func:`skilllib.prototypes.sparc_sensitivity`, results.json ``sparc_sensitivity``); ``lowpass``: the
+    positions' low-pass filter, ``"auto"`` (default: only when the noise needs it), ``"none"`` or a cut-off
+    in Hz (:mod:`skilllib.features`; results.json ``filter``); ``progress(items, description)`` wraps the
+    long loops (e.g. tqdm); ``workers`` / ``scheduler``: compute the features of a folder of Parquet files
+    on a Dask cluster, a LocalCluster of that many worker processes or the running scheduler at that
+    address (:mod:`skilllib.features`; the same feature table as in memory).
+
+    Raises :class:`OptionError` for a bad option (before reading the data),
+    :class:`skilllib.recordings.DataFormatError` for a file that cannot be read and
+    :class:`skilllib.pipeline.OutputError` for an output folder that cannot be used. Bad trials never raise:
+    they are in ``results["trials"]`` as ``invalid`` with their reason. With fewer than :data:`MIN_SELECTED`
+    selected trials (or fewer than 2 distinct ones) the clustering and transfer are skipped, said in
+    ``messages``. ``out`` is written as a whole (:mod:`skilllib.pipeline`): a fresh folder replaces it only
+    when everything is written, so old figures never sit beside new results and a failed run leaves it as
+    it was.
+    """
+    setup, limits = check_options(k, robot, qd_max, scaling, random_state)
+    dyn_limits = check_dynamic_options(robot, setup, qdd_max, tau_max)
+    params = check_sparc_params(fc, amp_th, padlevel)
+    variants = [check_sparc_params(**{**params, **dict(v)}) for v in _settings(sensitivity)]
+    if not isinstance(lowpass, Lowpass):
+        try:
+            lowpass = parse_lowpass(lowpass)
+        except ValueError as e:
+            raise OptionError(str(e)) from None
+    if out is not None:
+        out = Path(out)
+        if out.exists() and not out.is_dir():
+            raise OptionError(f"{out}: exists and is not a folder (--out names the folder for the results)")
+    features = None
+    if workers or scheduler:
+        from ..features import cluster_features
+
+        try:
+            recordings, features = cluster_features(data, workers, scheduler, lowpass=lowpass, sparc_params=params,
+                                                    read_options=read_options, variants=variants)
+        except ValueError as e:  # an option the cluster path does not take
+            raise OptionError(str(e)) from None
+        filt = features.attrs["lowpass"]
+    else:
+        recordings = load_input(data, **dict(read_options or {}))
+    for p in (params, *variants):
+        _check_nyquist(p, recordings.fs)
+    try:
+        filt = filt if features is not None else run_lowpass(recordings, lowpass)
+    except ValueError as e:  # a cut-off too high for the sampling rate
+        raise OptionError(str(e)) from None
+    result = compute(recordings, data, setup=setup, limits=limits, dyn_limits=dyn_limits, k=k, scaling=scaling,
+                     random_state=random_state, params=params, variants=variants, lowpass=filt, progress=progress,
+                     features=features)
+    if out is not None:
+        with output_folder(out) as folder:
+            if not in_json(result.features):
+                write_trials(result.features, folder)
+            write_json_atomic(result.results, folder / "results.json")
+            if write_figures:
+                result.results["figures"] = _write_figures(result, folder, setup.robot)
+                write_json_atomic(result.results, folder / "results.json")
+    return result
+
+
+def compute(recordings: Recordings, data: Any, *, setup: RobotSetup, limits: np.ndarray, dyn_limits: Any,
+            k: int, scaling: str,
+            random_state: int, params: dict[str, float], variants: list[dict[str, float]], lowpass: Lowpass,
+            progress: Progress = _no_progress, features: pd.DataFrame | None = None) -> PipelineRun:
+    """The pipeline's computation on validated ``recordings`` with checked options (see :func:`run`);
+    ``features``: their feature table when computed already (on a cluster)."""
+    if features is None:
+        features = trial_features(recordings, sparc_params=params, lowpass=lowpass, progress=progress)
+    selected = select(features)
+    results: dict[str, Any] = {
+        "schema_version": SCHEMA_VERSION,
+        "skilllib_version": __version__,
+        "dataset": {"path": _display_path(data), "synthetic": _is_shipped_cohort(data),
+                    "n_trials": len(features), "n_participants": int(features["participant"].nunique()),
+                    "fs": _plain(float(recordings.fs)), "n_resampled": int(features["resampled"].sum())},
+        "sparc_params": {"fc": params["fc"], "amp_th": params["amp_th"], "padlevel": int(params["padlevel"])},
+        "filter": lowpass.to_dict(),
+        "contact_speed_window": list(CONTACT_WINDOW),
+        **trials_block(features),
+        "n_selected": len(selected),
+    }
+    result = PipelineRun(results=results, recordings=recordings, features=features)
+    if not np.isfinite(recordings.fs):
+        result.messages.append("the sampling rate is unknown: no trial is usable to derive it from the time stamps")
+    n_res = results["dataset"]["n_resampled"]
+    if n_res:
+        result.messages.append(f"{n_res} trial(s) had irregular time stamps (jitter or dropped frames) and were "
+                               f"resampled onto a uniform {recordings.fs:.4g} Hz grid (trials[].resampled)")
+    no_rest = int(features["reason"].astype(str).str.startswith("no rest before onset").sum())
+    if no_rest > NO_REST_FRACTION * len(features):
+        hint = ("a stronger low-pass filter (--lowpass HZ)" if lowpass.cutoff_hz is not None else
+                "a low-pass filter (--lowpass auto or HZ)" if lowpass.chosen_by == "none" else
+                "a low-pass filter (--lowpass HZ)")
+        result.messages.append(
+            f"{no_rest} of {len(features)} trials are invalid with 'no rest before onset': either the recordings "
+            f"start after the movement began, or the position noise is so large that its derivative exceeds the "
+            f"{ONSET_SPEED:g} m/s onset speed; then try {hint} (chapter 5)")
+    if lowpass.cutoff_hz is not None:
+        result.messages.append(filter_message(selected, lowpass))
+    if len(selected):
+        result.messages.append(capped_message(selected, params))
+
+    sweep = None
+    if len(selected) < MIN_SELECTED:
+        result.messages.append(f"only {len(selected)} selected trial(s): clustering needs at least "
+                               f"{MIN_SELECTED}; no prototypes and no transfer")
+    else:
+        try:
+            with warnings.catch_warnings(record=True) as caught:  # a shrunk k range: a note of the run
+                warnings.simplefilter("always", UserWarning)
+                sweep = pt.silhouette_sweep(selected, scaling=scaling, random_state=random_state,
+                                            progress=progress)
+        except ValueError as e:
+            result.messages.append(f"{e}; no prototypes and no transfer")
+        else:
+            result.messages += [str(w.message) for w in caught if issubclass(w.category, UserWarning)]
+    if sweep is not None:
+        k_used, note = choose_k(k, sweep)
+        result.messages += [note] if note else []
+        fit = sweep.results[k_used]
+        if not fit.valid:
+            valid = sweep.valid_ks()
+            result.messages.append(
+                f"k = {k_used} is not silhouette-valid for these data (a cluster lies wholly below the average "
+                f"silhouette); valid k: {', '.join(map(str, valid)) or 'none'} (see silhouette_sweep.png, --k)")
+        result.sweep, result.prototypes = sweep, fit
+        results["silhouette"] = sweep.to_dict()
+        results["silhouette_estimate"] = est = sweep.estimate_dict()
+        if est["method"] == "subsample":
+            sd = max(v["sd"] for v in est["per_k"].values())
+            result.messages.append(
+                f"silhouettes estimated: {est['n_points']} selected trials > {est['exact_max']} (exact up to that); "
+                f"mean of {est['repeats']} stratified random subsamples of {est['sample_size']} per k, seeded by "
+                f"--seed (largest SD over the subsamples {sd:.3f}; silhouette_estimate)")
+        results["silhouette_valid_k"] = sweep.valid_ks()
+        results["k"] = k_used
+        results["scaling"] = scaling
+        results["clusters"] = fit.to_dict()["clusters"]
+        for c in progress(list(range(k_used)), "transfer"):
+            p, tr = fit.prototypes.at[c, "participant"], fit.prototypes.at[c, "trial"]
+            seg = (segment(recordings, p, tr, lowpass=lowpass) if isinstance(recordings, Recordings) else
+                   recordings.segment(p, tr, lowpass=lowpass))
+            result.profiles.append((seg.t - seg.t[0], seg.speed))
+            result.transfers.append(transfer(setup.robot, seg.t - seg.t[0], seg.pos, seg.vel, q0=setup.q0,
+                                             qd_limits=limits, cluster=c))
+        result.assessments = assess(setup.robot, result.transfers, dyn_limits, sparc_params=params)
+        results["transfer"] = transfer_block(result.assessments)
+    if variants and sweep is not None:
+        result.sensitivity = sparc_sensitivity(recordings, [params, *variants], k=results["k"], scaling=scaling,
+                                               random_state=random_state, reference=(features, sweep),
+                                               lowpass=lowpass)
+        results["sparc_sensitivity"] = result.sensitivity.to_dict()
+    elif variants:
+        result.messages.append("no SPARC sensitivity analysis: too few selected trials to cluster")
+    results["messages"] = result.messages
+    return result
+
+
+def _settings(sensitivity: Sequence[Mapping[str, float]] | None) -> list[Mapping[str, float]]:
+    """The ``sensitivity`` option as a list of settings; :class:`OptionError` for a bad one."""
+    if sensitivity is None:
+        return []
+    out = []
+    for v in sensitivity:
+        if not isinstance(v, Mapping) or not v or set(v) - {"fc", "amp_th", "padlevel"}:
+            raise OptionError(f"each sensitivity setting must give some of fc, amp_th, padlevel, got {v!r}")
+        out.append(v)
+    return out
+
+
+def capped_message(selected: pd.DataFrame, params: Mapping[str, float]) -> str:
+    """How many selected trials had their SPARC band ended by fc rather than the amplitude threshold."""
+    n = int(selected["sparc_capped"].sum())
+    return (f"{n} of {len(selected)} selected trials have their SPARC band ended by fc = {params['fc']:g} Hz rather "
+            f"than by the amplitude threshold {params['amp_th']:g} (sparc_capped): their SPARC depends on fc "
+            f"(compare settings with --sensitivity, chapter 3)")
+
+
+def filter_message(selected: pd.DataFrame, lowpass: Lowpass) -> str:
+    """What the low-pass filter did, and how many selected trials SPARC read beyond its cut-off."""
+    beyond = int((selected["sparc_band_end_hz"] > lowpass.cutoff_hz).sum())
+    return (f"positions were low-pass filtered at {lowpass.cutoff_hz:.3g} Hz ({lowpass.chosen_by}; zero-lag "
+            f"Butterworth, filter in results.json); SPARC's band reaches above that cut-off in {beyond} of "
+            f"{len(selected)} selected trials, whose SPARC is partly the filter's (chapter 5)")
+
+
+def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
+    """Write every figure of the pipeline (PNG and SVG) to ``out``; return their file names."""
+    from .. import figures as fg
+
+    written = []
+
+    def keep(fig, name: str, note: str = "") -> None:
+        if run_.results["dataset"]["synthetic"]:
+            fig.text(0.995, 0.003, SYNTHETIC_NOTE, ha="right", va="bottom", fontsize=7, color="0.35")
+        if note:
+            fig.text(0.005, 0.003, f"Shown: {note}.", ha="left", va="bottom", fontsize=7, color="0.35")
+        written.extend(p.name for p in fg.save(fig, out, name))
+        fg.plt.close(fig)
+
+    if (run_.features["status"] != "invalid").any():  # the data figures need at least one valid trial
+        keep(fg.plot_feature_overview(run_.features, run_.results["sparc_params"]["amp_th"]), "features")
+        samples = isinstance(run_.recordings, Recordings)  # not on the cluster path: the samples stay there
+        few, note = fg.few_participants(run_.features)  # one panel per participant: at most 12
+        if samples:
+            keep(fg.plot_trials_by_participant(run_.recordings, few), "trials_by_participant", note)
+        keep(fg.plot_participant_features(few), "participant_features", note)
+        if samples:
+            keep(fg.plot_sparc_vs_length(run_.features, run_.recordings.fs, run_.results["sparc_params"]["amp_th"]),
+                 "sparc_vs_length")
+    if run_.prototypes is not None:
+        keep(fg.plot_silhouette_sweep(run_.sweep, chosen_k=run_.prototypes.k), "silhouette_sweep")
+        keep(fg.plot_silhouettes(run_.prototypes), "silhouettes_k")
+        keep(fg.plot_clusters(run_.prototypes), "clusters_pv_sparc")
+        keep(fg.plot_prototype_profiles(run_.profiles, run_.prototypes.prototypes), "prototype_speed_profiles")
+        keep(fg.plot_joint_velocities(run_.transfers), "joint_velocities")
+        keep(fg.plot_frame_mapping(robot, run_.transfers[-1]), "frame_mapping")  # the fastest prototype
+        for fig, name in fg.dynamics_figures(run_.assessments):
+            keep(fig, name)
+    if run_.sensitivity is not None:
+        keep(fg.plot_sparc_sensitivity(run_.sensitivity), "sparc_sensitivity")
+    return written

@@ -1,0 +1,83 @@
+"""The human summary of a pipeline run: counts, the commonest reasons, k, prototypes, feasibility.
+
+``python -m skilllib run`` prints :func:`summary_lines` at the end of a run; :func:`reason_kind` groups
+trials' reasons that differ only in their numbers.
+"""
+from __future__ import annotations
+
+import re
+from collections import Counter
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..recordings import MAX_RANGE_M
+from ..robot import limits_text
+
+if TYPE_CHECKING:
+    from ._run import PipelineRun
+
+
+def summary_lines(run_: PipelineRun) -> list[str]:
+    """A short human summary of a run: counts, commonest reasons, k, prototypes, feasibility."""
+    f = run_.features
+    counts = f["status"].value_counts()
+    fs = run_.recordings.fs
+    rate = f"at {fs:.4g} Hz (from the time stamps)" if np.isfinite(fs) else "at an unknown sampling rate"
+    lines = [f"trials read: {len(f)} from {run_.results['dataset']['n_participants']} participant(s) {rate}",
+             (f"selected: {counts.get('selected', 0)}, excluded: {counts.get('excluded', 0)}, "
+              f"invalid: {counts.get('invalid', 0)}")]
+    for status in ("invalid", "excluded"):
+        reasons = Counter(reason_kind(r) for r in f.loc[f["status"] == status, "reason"])
+        if reasons:
+            top = "; ".join(f"{n} x {r}" for r, n in reasons.most_common(3))
+            lines.append(f"  commonest {status} reasons: {top}")
+    if run_.prototypes is not None:
+        fit = run_.prototypes
+        how = "" if fit.silhouette_estimate is None else f" (estimate, SD {fit.silhouette_estimate.sd:.3f} over subsamples)"
+        lines.append(f"k = {fit.k} clusters ({fit.scaling} features), average silhouette {fit.silhouette:.3f}{how}")
+        for c, (tr, a) in enumerate(zip(run_.transfers, run_.assessments)):
+            p = {col: fit.prototypes.at[c, col] for col in fit.prototypes.columns}
+            dyn = a.dynamics
+            verdict = "feasible" if dyn.feasible else (
+                f"needs time scaling x{dyn.time_scale:.2f} ({dyn.binding_limit} binds)" if not tr.flags
+                else f"{len(tr.flags)} flag(s)")
+            peak = f"{np.nanmax(tr.peak_abs_qd):.2f}" if np.isfinite(tr.peak_abs_qd).any() else "n/a"
+            lines.append(f"  cluster {c}: size {fit.sizes[c]}, prototype participant {p['participant']} trial "
+                         f"{p['trial']} (PV {p['pv']:.2f} m/s, SPARC {p['sparc']:.2f}); "
+                         f"peak |qd| {peak} rad/s, {verdict}")
+        n_ok = sum(a.dynamics.feasible for a in run_.assessments)
+        lines.append(f"feasibility on {run_.transfers[0].robot} ({limits_text(run_.assessments[0].dynamics)}): "
+                     f"{n_ok} of {fit.k} prototypes feasible as recorded")
+    if run_.sensitivity is not None:
+        sens = run_.sensitivity
+        lines.append(f"SPARC sensitivity, against this run's {sens.reference.label}:")
+        for label, c in sens.comparison().iterrows():
+            lines.append(f"  {label}: SPARC changed in {int(c['changed'])} of {int(c['of'])} selected trials (mean |change| "
+                         f"{c['mean |change|']:.3f}, SD across trials {c['reference SD']:.3f}); ARI {c['ARI']:.2f} "
+                         f"with this run's k = {sens.k} partition; {int(c['prototypes kept'])} of {sens.k} prototypes kept")
+    lines += [f"note: {m}" for m in run_.messages]
+    return lines
+
+
+#: Reasons whose numbers differ from trial to trial, and the kind they are counted as in the summary.
+_REASON_KINDS = (
+    (r"contact speed \S+ m/s (below|above) (\S+ m/s)", r"contact speed \1 \2"),
+    (r"sampled at ", "sampled at another rate than the file"),
+    (r"positions span ", f"positions span more than {MAX_RANGE_M:g} m"),
+    (r"in contact from sample ", "in contact from the start: no approach recorded"),
+)
+
+
+def reason_kind(reason: str) -> str:
+    """A trial's reason without its trial-specific parts (line numbers, values), so that like reasons are
+    counted together: ``"time goes backwards at line 12 (t = ...)"`` -> ``"time goes backwards"``."""
+    s = str(reason)
+    for pattern, kind in _REASON_KINDS:
+        m = re.match(pattern, s)
+        if m:
+            return m.expand(kind)
+    s = s.split(":")[0]
+    s = re.sub(r"\s*\([^)]*\d[^)]*\)", "", s)  # parentheses with numbers: "(3; need at least 5)"
+    s = re.sub(r"\s+at (line|row) \d+.*$", "", s)
+    return re.sub(r"[-+]?\d+(\.\d+)?(e[-+]?\d+)?", "N", s).strip()

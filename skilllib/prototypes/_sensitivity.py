@@ -1,0 +1,247 @@
+"""How much the paper's procedure depends on the SPARC parameters: the pipeline under several settings.
+
+SPARC's band is capped at a maximum cut-off ``fc`` (Hz). On long, smooth profiles the amplitude
+threshold ends the band well below any sensible ``fc`` and the cap does not matter; on short segments
+cut at contact the spectrum is wide, the cap ends many bands, and the cap then decides the value
+(chapter 1). :func:`sparc_sensitivity` runs the clustering part of the pipeline -- features, selection,
+silhouette sweep, K-means prototypes (:mod:`skilllib.features`, :mod:`skilllib.prototypes`) -- once per
+setting and compares every setting with the first one, the reference: which trials' SPARC changes and by
+how much, how many bands the cap ends, the adjusted Rand index between the two k-cluster partitions
+(Hubert & Arabie 1985) and which prototype trials survive. The selection (contact speed) does not
+depend on SPARC, so every setting clusters the same trials.
+
+The chapters (1 and 3) and ``python -m skilllib run --sensitivity`` call it.
+"""
+from __future__ import annotations
+
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from sklearn.metrics import adjusted_rand_score
+
+from . import _kmeans as pt
+from ..recordings import Recordings
+from ..features import select, trial_features
+from ..smoothness import SPARC_PARAMS
+
+#: The settings the book compares: its own (the paper's 0-20 Hz) first, then the authors' Python default.
+DEFAULT_SETTINGS: tuple[dict[str, float], ...] = ({"fc": 20.0}, {"fc": 10.0})
+#: A trial's SPARC "changes" between two settings when the values differ by more than this (rounding).
+CHANGE_TOL = 1e-9
+
+
+def setting_label(params: Mapping[str, float]) -> str:
+    """``"fc 20 Hz, amp_th 0.05, padlevel 4"`` for a complete parameter dict."""
+    return f"fc {params['fc']:g} Hz, amp_th {params['amp_th']:g}, padlevel {params['padlevel']:g}"
+
+
+@dataclass(frozen=True, eq=False)
+class SettingRun:
+    """The pipeline's clustering under one SPARC setting.
+
+    ``params``: fc (Hz), amp_th, padlevel; ``features``: :func:`skilllib.features.trial_features` of every
+    trial with them; ``sweep``: the silhouette sweep of the selected trials; ``fit``: the k-cluster
+    K-means fit and its prototypes (None when the selected trials are too few to cluster)."""
+
+    params: dict[str, float]
+    features: pd.DataFrame
+    sweep: pt.SilhouetteSweep | None
+    fit: pt.PrototypeResult | None
+
+    @property
+    def label(self) -> str:
+        return setting_label(self.params)
+
+    @property
+    def selected(self) -> pd.DataFrame:
+        return select(self.features)
+
+    @property
+    def n_capped(self) -> int:
+        """Selected trials whose band ``fc`` ended (rather than the amplitude threshold)."""
+        return int(self.selected["sparc_capped"].sum())
+
+    def prototype_ids(self) -> set[tuple[Any, Any]]:
+        if self.fit is None:
+            return set()
+        return set(self.fit.prototypes[["participant", "trial"]].itertuples(index=False, name=None))
+
+
+@dataclass(frozen=True, eq=False)
+class SparcSensitivity:
+    """:func:`sparc_sensitivity`'s result: ``runs[0]`` is the reference, ``k`` the number of clusters."""
+
+    runs: list[SettingRun]
+    k: int
+
+    @property
+    def reference(self) -> SettingRun:
+        return self.runs[0]
+
+    def sparc_table(self) -> pd.DataFrame:
+        """The selected trials (rows: participant, trial, pv, duration, n) with their SPARC and ``capped``
+        flag under every setting (columns ``sparc | <label>`` and ``capped | <label>``)."""
+        base = self.reference.selected[["participant", "trial", "pv", "duration", "n"]].copy()
+        for run in self.runs:
+            base[f"sparc | {run.label}"] = run.selected["sparc"].to_numpy()
+            base[f"capped | {run.label}"] = run.selected["sparc_capped"].to_numpy(dtype=bool)
+        return base
+
+    def summary(self) -> pd.DataFrame:
+        """One row per setting: selected trials, capped bands among them (count and share), mean and SD of
+        SPARC, its correlation with the segment duration, the average silhouette at k and the valid k."""
+        rows = {}
+        for run in self.runs:
+            s = run.selected
+            rows[run.label] = {
+                "selected": len(s), "capped": run.n_capped,
+                "capped share": run.n_capped / len(s) if len(s) else np.nan,
+                "SPARC mean": s["sparc"].mean(), "SPARC SD": s["sparc"].std(),
+                "corr(SPARC, duration)": _corr(s["sparc"], s["duration"]),
+                f"silhouette, k = {self.k}": run.fit.silhouette if run.fit is not None else np.nan,
+                "valid k": run.sweep.valid_ks() if run.sweep is not None else []}
+        return pd.DataFrame.from_dict(rows, orient="index").rename_axis("setting")
+
+    def silhouettes(self) -> pd.DataFrame:
+        """Average silhouette per k (rows) under every setting (columns)."""
+        return pd.DataFrame({run.label: pd.Series(dict(zip(run.sweep.ks, run.sweep.scores)))
+                             for run in self.runs if run.sweep is not None}).rename_axis("k")
+
+    def comparison(self) -> pd.DataFrame:
+        """Every other setting against the reference: trials whose SPARC changes (``changed``, beyond
+        :data:`CHANGE_TOL`), the mean and largest absolute change, the reference's SD of SPARC across the
+        selected trials (the scale to read the changes on), the ARI of the two k-cluster partitions and
+        how many of the setting's k prototypes are prototypes of the reference too."""
+        ref = self.reference
+        rows = {}
+        for run in self.runs[1:]:
+            d = (run.selected["sparc"].to_numpy() - ref.selected["sparc"].to_numpy())
+            both = ref.fit is not None and run.fit is not None
+            rows[run.label] = {
+                "changed": int(np.sum(np.abs(d) > CHANGE_TOL)), "of": len(d),
+                "mean |change|": float(np.mean(np.abs(d))) if len(d) else np.nan,
+                "max |change|": float(np.max(np.abs(d))) if len(d) else np.nan,
+                "reference SD": float(ref.selected["sparc"].std()),
+                "ARI": adjusted_rand_score(ref.fit.labels, run.fit.labels) if both else np.nan,
+                "prototypes kept": len(run.prototype_ids() & ref.prototype_ids()) if both else 0}
+        return pd.DataFrame.from_dict(rows, orient="index").rename_axis(f"vs {ref.label}")
+
+    def prototypes(self) -> pd.DataFrame:
+        """The prototypes of every setting (clusters numbered by centre PV) with ``kept``: the same trial
+        is a prototype of the reference too."""
+        ref_ids = self.reference.prototype_ids()
+        parts = {}
+        for run in self.runs:
+            if run.fit is not None:
+                p = run.fit.prototypes.drop(columns="row")
+                p["kept"] = [tuple(x) in ref_ids for x in p[["participant", "trial"]].itertuples(index=False)]
+                parts[run.label] = p
+        return pd.concat(parts, names=["setting"]) if parts else pd.DataFrame()
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: ``k``, ``settings`` (one per run: ``params``, ``n_selected``, ``n_capped``,
+        ``silhouette`` {k: score}, ``prototypes`` [{cluster, participant, trial, pv, sparc, kept}] and, for
+        all but the reference, ``vs_reference`` {n_sparc_changed, mean_abs_sparc_change,
+        max_abs_sparc_change, ari, prototypes_kept})."""
+        comp = self.comparison()
+        protos = self.prototypes()
+        out = []
+        for run in self.runs:
+            entry: dict[str, Any] = {"params": dict(run.params), "n_selected": len(run.selected),
+                                     "n_capped": run.n_capped,
+                                     "silhouette": run.sweep.to_dict() if run.sweep is not None else {}}
+            if run.fit is not None:
+                p = protos.loc[run.label]
+                entry["prototypes"] = [{"cluster": int(c), "participant": _py(r["participant"]),
+                                        "trial": _py(r["trial"]), "pv": float(r["pv"]),
+                                        "sparc": float(r["sparc"]), "kept": bool(r["kept"])}
+                                       for c, r in p.iterrows()]
+            if run is not self.reference:
+                c = comp.loc[run.label]
+                entry["vs_reference"] = {"n_sparc_changed": int(c["changed"]),
+                                         "mean_abs_sparc_change": _num(c["mean |change|"]),
+                                         "max_abs_sparc_change": _num(c["max |change|"]),
+                                         "ari": _num(c["ARI"]), "prototypes_kept": int(c["prototypes kept"])}
+            out.append(entry)
+        return {"k": self.k, "settings": out}
+
+
+def _py(v: Any) -> Any:
+    return v.item() if isinstance(v, np.generic) else v
+
+
+def _num(v: float) -> float | None:
+    v = float(v)
+    return v if np.isfinite(v) else None
+
+
+def _corr(a: pd.Series, b: pd.Series) -> float:
+    if len(a) < 3 or a.std() == 0 or b.std() == 0:
+        return np.nan
+    return float(np.corrcoef(a, b)[0, 1])
+
+
+def complete_params(setting: Mapping[str, float]) -> dict[str, float]:
+    """A setting with the book's defaults (:data:`skilllib.smoothness.SPARC_PARAMS`) filled in; ValueError
+    for a key that is not a SPARC parameter."""
+    unknown = set(setting) - set(SPARC_PARAMS)
+    if unknown:
+        raise ValueError(f"unknown SPARC parameter(s) {sorted(unknown)}; use fc, amp_th, padlevel")
+    return {**SPARC_PARAMS, **{key: float(v) if key != "padlevel" else int(v) for key, v in setting.items()}}
+
+
+def sparc_sensitivity(recordings: Recordings | pd.DataFrame,
+                      settings: Sequence[Mapping[str, float]] = DEFAULT_SETTINGS, *, k: int = pt.DEFAULT_K,
+                      scaling: pt.Scaling = "raw", random_state: int = 0,
+                      k_range: tuple[int, int] = pt.K_RANGE,
+                      reference: tuple[pd.DataFrame, pt.SilhouetteSweep | None] | None = None,
+                      lowpass: Any = "auto") -> SparcSensitivity:
+    """The clustering of the paper under each SPARC setting in ``settings`` (dicts of fc in Hz, amp_th,
+    padlevel; missing keys take the book's defaults), compared with the first.
+
+    Per setting: :func:`~skilllib.features.trial_features`, the selected trials, the silhouette sweep over
+    ``k_range`` and the ``k``-cluster fit (k reduced to the largest the sweep reached; the sweep's own
+    shrink warnings are not repeated). ``scaling`` and ``random_state`` as in
+    :func:`skilllib.prototypes.fit_prototypes`. ``reference``: the first setting's features and sweep when
+    the caller has them already (the pipeline), computed with the same options; they are not recomputed.
+    ``lowpass``: the positions' filter (:func:`skilllib.features.trial_features`), the same for every
+    setting (the pipeline passes the one its run chose). Returns :class:`SparcSensitivity`.
+    """
+    if not settings:
+        raise ValueError("no SPARC settings to compare")
+    params = [complete_params(s) for s in settings]
+    runs = []
+    k_used = int(k)
+    for i, p in enumerate(params):
+        if i == 0 and reference is not None:
+            feats, sweep = reference
+            if sweep is not None:
+                k_used = min(k_used, int(sweep.ks[-1]))
+            runs.append((p, feats, sweep))
+            continue
+        feats = trial_features(recordings, sparc_params=p, lowpass=lowpass)
+        sel = select(feats)
+        sweep = None
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", UserWarning)
+                sweep = pt.silhouette_sweep(sel, *k_range, scaling=scaling, random_state=random_state)
+        except ValueError:
+            pass  # too few (distinct) selected trials to cluster: the run says so through fit = None
+        if sweep is not None:
+            k_used = min(k_used, int(sweep.ks[-1]))
+        runs.append((p, feats, sweep))
+    out = []
+    for p, feats, sweep in runs:
+        fit = None
+        if sweep is not None and k_used in sweep.results:
+            fit = sweep.results[k_used]
+        out.append(SettingRun(p, feats, sweep, fit))
+    ids = [tuple(map(tuple, r.selected[["participant", "trial"]].to_numpy())) for r in out]
+    if any(i != ids[0] for i in ids[1:]):  # cannot happen: the selection does not use SPARC
+        raise RuntimeError("the settings selected different trials")
+    return SparcSensitivity(out, k_used)

@@ -1,0 +1,253 @@
+"""A folder of one-trial files (C3D, TRC, per-trial CSV) as one long table, with the files it could not read.
+
+**Naming rule** (identifiers are text, exactly as in the file names: ``01`` and ``1`` are two ids):
+
+* ``DIR/<participant>/<trial>.<ext>``: the sub-folder's name is the participant, the file's stem (name
+  without ``.c3d``, ``.trc``, ``.csv``, ``.csv.gz``, ...) the trial;
+* ``DIR/<participant>_<trial>.<ext>``: a file directly in ``DIR`` is split at the **last** ``_`` of its
+  stem (``P_01_3.c3d``: participant ``P_01``, trial ``3``);
+* ``name_pattern``: a regular expression with named groups ``trial`` and, optionally, ``participant``,
+  matched against the whole stem of every file (``re.fullmatch``); its ``participant`` group, when it
+  has one, replaces the sub-folder's name; a file directly in ``DIR`` needs it.
+
+Only ``DIR`` and its direct sub-folders are read; hidden files and folders (``.name``) are skipped; a
+file deeper down is reported, not read. Trials come in a fixed order: participants, then trials, in
+natural order (``P2`` before ``P10``; ids equal as numbers, like ``01`` and ``1``, by their text).
+
+**Files that cannot be read** never stop the others: :func:`read_folder` returns them as
+:class:`FileProblem` (file, participant, trial, reason; participant and trial None when the name does
+not give them) for the caller to list as invalid trials. It raises only when the options are wrong or
+no file at all can be read.
+"""
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+from pathlib import Path
+from typing import NamedTuple
+
+import numpy as np
+import pandas as pd
+
+from ._errors import DataFormatError
+from ._c3d import read_c3d
+from ._mapping import map_frame, rename_columns, unit_factor, up_axis_rotation
+from ._trc import read_trc
+
+C3D_SUFFIXES = (".c3d",)
+TRC_SUFFIXES = (".trc",)
+CSV_SUFFIXES = (".csv", ".csv.gz", ".csv.zip", ".csv.bz2", ".csv.xz", ".csv.zst")  #: pandas infers compression
+TRIAL_COLUMNS = ("t", "x", "y", "z", "contact")  #: columns of one trial's table (no ids)
+
+
+class FileProblem(NamedTuple):
+    """A file that could not be read: ``reason`` is one line; ``participant``/``trial`` as text or None."""
+
+    path: str
+    participant: str | None
+    trial: str | None
+    reason: str
+
+
+def file_kind(path: Path) -> str | None:
+    """``'c3d'``, ``'trc'``, ``'csv'`` (also compressed) or None, from the file name (case ignored)."""
+    name = path.name.lower()
+    for kind, suffixes in (("c3d", C3D_SUFFIXES), ("trc", TRC_SUFFIXES), ("csv", CSV_SUFFIXES)):
+        if name.endswith(suffixes):
+            return kind
+    return None
+
+
+def file_stem(path: Path) -> str:
+    """The name without the format's suffix(es): ``P01_3.csv.gz`` -> ``P01_3``."""
+    name = path.name
+    for suffix in sorted(C3D_SUFFIXES + TRC_SUFFIXES + CSV_SUFFIXES, key=len, reverse=True):
+        if name.lower().endswith(suffix):
+            return name[: -len(suffix)]
+    return path.stem
+
+
+def compile_pattern(name_pattern: str | re.Pattern | None) -> re.Pattern | None:
+    """``name_pattern`` compiled; DataFormatError when it is not a regular expression or has no ``trial`` group."""
+    if name_pattern is None:
+        return None
+    try:
+        pat = re.compile(name_pattern)
+    except re.error as e:
+        raise DataFormatError(f"name pattern {str(name_pattern)!r} is not a regular expression: {e}") from None
+    if "trial" not in pat.groupindex:
+        raise DataFormatError(f"name pattern {pat.pattern!r} has no (?P<trial>...) group")
+    return pat
+
+
+def trial_ids(stem: str, folder: str | None, pattern: re.Pattern | None) -> tuple[str, str]:
+    """(participant, trial) as text for a file ``stem`` in sub-folder ``folder`` (None: directly in the
+    folder read), by the naming rule of the module docstring; ValueError with the reason when the name
+    does not give them."""
+    if pattern is not None:
+        m = pattern.fullmatch(stem)
+        if m is None:
+            raise ValueError(f"name {stem!r} does not match the name pattern {pattern.pattern!r}")
+        participant = m.groupdict().get("participant") or folder
+        if not participant:
+            raise ValueError(f"name pattern {pattern.pattern!r} gives no participant for {stem!r} and the file "
+                             f"is not in a participant's sub-folder")
+        if not m.group("trial"):
+            raise ValueError(f"name pattern {pattern.pattern!r} gives an empty trial for {stem!r}")
+        return participant, m.group("trial")
+    if folder is not None:
+        return folder, stem
+    participant, sep, trial = stem.rpartition("_")
+    if not sep or not participant or not trial:
+        raise ValueError(f"cannot tell participant and trial from the name {stem!r}: name it PARTICIPANT_TRIAL, "
+                         f"put it in a sub-folder named after the participant, or give a name pattern")
+    return participant, trial
+
+
+def natural_key(text: str) -> tuple:
+    """Sort key: digit runs compare as numbers, other runs as lower-case text, then the text itself."""
+    parts = re.split(r"(\d+)", text)
+    return tuple((0, int(p), "") if p.isdigit() else (1, 0, p.lower()) for p in parts if p), text
+
+
+def read_trial_csv(path: Path, *, columns: Mapping[str, str] | None = None) -> pd.DataFrame:
+    """One trial's CSV (compression inferred from the name): columns ``t`` (s), ``x, y, z`` and, when
+    present, ``contact``, after renaming by ``columns`` (units and axes: :func:`map_frame`). A table
+    with participant or trial columns holds several trials and is refused."""
+    try:
+        df = pd.read_csv(path, skipinitialspace=True)
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError, OSError, ValueError,
+            ImportError) as e:  # ImportError: .csv.zst without the zstandard package
+        msg = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
+        raise DataFormatError(f"{path}: not a readable CSV table ({msg[:200]})") from None
+    df = df.rename(columns=lambda c: str(c).strip())
+    ids = [c for c in df.columns if (columns or {}).get(c, c) in ("participant", "trial")]
+    if ids:
+        raise DataFormatError(f"{path}: has participant/trial columns ({', '.join(ids)}); a folder holds one "
+                              f"trial per file (read a table of many trials as a CSV file, not as a folder)")
+    if columns:
+        df = rename_columns(df, columns, str(path))
+    missing = [c for c in TRIAL_COLUMNS[:4] if c not in df.columns]
+    if missing:
+        raise DataFormatError(f"{path}: required column {missing[0]!r} missing (columns: {', '.join(df.columns)}); "
+                              f"rename with --columns old=new")
+    return df[[c for c in TRIAL_COLUMNS if c in df.columns]]
+
+
+def read_trial_file(path: str | Path, *, marker: str | None = None, contact_channel: str | None = None,
+                    contact_threshold: float | None = None, units: str | None = None,
+                    up_axis: str | None = None, contact_height: float | None = None,
+                    columns: Mapping[str, str] | None = None) -> pd.DataFrame:
+    """One C3D, TRC or per-trial CSV file as one trial in the book's frame (columns ``t, x, y, z,
+    contact``; s, m, y up, 0/1 or NaN where the file's own contact flag is empty).
+
+    C3D and TRC files carry their unit in the header (``units`` replaces it); a CSV is in ``units``
+    (None: m) and renamed by ``columns``. ``up_axis`` and ``contact_height`` as in :func:`map_frame`.
+    Raises :class:`~skilllib.recordings.DataFormatError` naming the file.
+    """
+    path = Path(path)
+    kind = file_kind(path)
+    if kind == "c3d":
+        df = read_c3d(path, marker=marker, contact_channel=contact_channel,
+                      contact_threshold=contact_threshold, units=units)
+    elif kind == "trc":
+        df = read_trc(path, marker=marker, units=units)
+    elif kind == "csv":
+        df = read_trial_csv(path, columns=columns)
+    else:
+        raise DataFormatError(f"{path}: not a .c3d, .trc or .csv file")
+    return map_frame(df, units=units if kind == "csv" else None, up_axis=up_axis,
+                     contact_height=contact_height, source=str(path))
+
+
+def _reason(e: Exception, path: Path) -> str:
+    """The error's message without the leading file name (the problem names the file)."""
+    msg = str(e)
+    head = str(path)
+    return msg[len(head):].lstrip(":, ") if msg.startswith(head) else msg
+
+
+def _scan(root: Path) -> tuple[list[tuple[Path, str | None]], list[Path]]:
+    """Readable-looking files as (path, sub-folder name or None), and files deeper than one sub-folder."""
+    found, deep = [], []
+    for p in sorted(root.rglob("*")):
+        rel = p.relative_to(root)
+        if any(part.startswith(".") for part in rel.parts) or not p.is_file() or file_kind(p) is None:
+            continue
+        if len(rel.parts) == 1:
+            found.append((p, None))
+        elif len(rel.parts) == 2:
+            found.append((p, rel.parts[0]))
+        else:
+            deep.append(p)
+    return found, deep
+
+
+def read_folder(path: str | Path, *, marker: str | None = None, contact_channel: str | None = None,
+                contact_threshold: float | None = None, units: str | None = None,
+                up_axis: str | None = None, contact_height: float | None = None,
+                columns: Mapping[str, str] | None = None,
+                name_pattern: str | re.Pattern | None = None) -> tuple[pd.DataFrame, list[FileProblem]]:
+    """Every ``.c3d``, ``.trc`` and ``.csv`` (also compressed) file of ``path`` as one trial each.
+
+    Returns ``(frame, problems)``: ``frame`` is the long table ``participant, trial, t, x, y, z,
+    contact`` and ``file``, ``sample`` (the file, relative to ``path``, and the 1-based sample in it) (ids as ``str``; s; m in the book's frame; 0/1, or NaN where a file's own flag is empty),
+    trials in the natural order of the module docstring, each file's rows contiguous; ``problems`` lists
+    the files that could not be read (:class:`FileProblem`), in the same order (those whose names give
+    no ids first), for the caller to mark those trials invalid. The options are those of
+    :func:`read_trial_file`; the naming rule (sub-folder or ``PARTICIPANT_TRIAL`` name, or
+    ``name_pattern``) is in the module docstring. Two files giving one (participant, trial) are a
+    problem for the second.
+
+    Raises :class:`~skilllib.recordings.DataFormatError` when ``path`` is not a folder, an option is wrong
+    (unit, axis, pattern), the folder has no such file, or none of its files can be read.
+    """
+    root = Path(path)
+    if not root.is_dir():
+        raise DataFormatError(f"{root}: not a folder" if root.exists() else f"{root}: folder not found")
+    pattern = compile_pattern(name_pattern)
+    if units is not None:
+        unit_factor(units, str(root))
+    if up_axis is not None:
+        up_axis_rotation(up_axis)
+    found, deep = _scan(root)
+    if not found and not deep:
+        raise DataFormatError(f"{root}: no .c3d, .trc or .csv files in the folder or its sub-folders")
+    opts = dict(marker=marker, contact_channel=contact_channel, contact_threshold=contact_threshold, units=units,
+                up_axis=up_axis, contact_height=contact_height, columns=columns)
+    named, problems = [], []
+    for p, folder in found:
+        try:
+            named.append((*trial_ids(file_stem(p), folder, pattern), p))
+        except ValueError as e:
+            problems.append(FileProblem(str(p), None, None, str(e)))
+    problems += [FileProblem(str(p), None, None, f"in a sub-sub-folder: only {root}/<participant>/<file> is read")
+                 for p in deep]
+    named.sort(key=lambda r: (natural_key(r[0]), natural_key(r[1]), str(r[2])))
+    frames, seen = [], {}
+    for participant, trial, p in named:
+        if (participant, trial) in seen:
+            problems.append(FileProblem(str(p), participant, trial, f"participant {participant!r} trial {trial!r} "
+                                        f"is also {seen[participant, trial]}"))
+            continue
+        seen[participant, trial] = p
+        try:
+            df = read_trial_file(p, **opts)
+        except DataFormatError as e:
+            problems.append(FileProblem(str(p), participant, trial, _reason(e, p)))
+            continue
+        df = df.reindex(columns=list(TRIAL_COLUMNS))
+        df.insert(0, "trial", trial)
+        df.insert(0, "participant", participant)
+        df["file"] = str(p.relative_to(root))  # where each sample came from, for messages
+        df["sample"] = np.arange(1, len(df) + 1)
+        frames.append(df)
+    if not frames:
+        first = problems[0]
+        raise DataFormatError(f"{root}: none of the {len(found) + len(deep)} files could be read "
+                              f"(first: {first.path}: {first.reason})")
+    problems.sort(key=lambda q: (natural_key(q.participant or ""), natural_key(q.trial or ""), q.path))
+    frame = pd.concat(frames, ignore_index=True)
+    frame["participant"] = frame["participant"].astype(object)
+    frame["trial"] = frame["trial"].astype(object)
+    return frame, problems

@@ -1,0 +1,421 @@
+"""The open recordings format: one long table, read, validated and written.
+
+A long table, one row per sample, columns ``participant, trial, t, x, y, z, contact``:
+
+=============  =====  ===================================================================
+column         unit   meaning
+=============  =====  ===================================================================
+participant    --     participant id: text, read exactly as written (``01``, ``1`` and ``NA`` differ)
+trial          --     trial id within the participant: text, read exactly as written
+t              s      time stamp of the sample (any origin; increasing within a trial)
+x, y, z        m      tool-tip position: x mediolateral, y vertical (up), z anteroposterior
+contact        0/1    1 when the tip touches the contact surface
+=============  =====  ===================================================================
+
+The rows of one trial are contiguous and time-ordered; other columns are ignored. This is the format
+of the book's synthetic cohort (:mod:`skilllib.datasets`, :mod:`skilllib.cohort`) and of a user's own
+recordings; :mod:`skilllib.recordings` turns C3D and TRC files, folders of them, and tables with other
+column names, units or axes into it.
+
+**Identifiers are text.** They are never converted to numbers: ``01`` and ``1`` are two participants,
+``NA`` is a participant, a 17-digit id keeps every digit. Surrounding spaces are removed; an empty id is
+an error. A DataFrame given through the API may hold numbers: they are written as text (``str``, and an
+integer-valued float without its ``.0``). Tables and figures order ids naturally (:func:`natural_key`:
+``P2`` before ``P10``).
+
+**Files.** A CSV, optionally compressed (``.gz``, ``.bz2``, ``.zip``, ``.xz``, ``.zst``: read as pandas
+does, inferred from the extension); UTF-8 with or without a byte-order mark. Line numbers in messages
+count physical lines of the file (a quoted cell spanning lines counts all of them).
+
+Problems with the *file* raise :class:`DataFormatError` (a ``ValueError``) with one line naming the file
+and, where it applies, the line and column. Problems with a *trial* never raise: the trial is kept,
+marked ``invalid`` in :attr:`Recordings.trials` with the reason, and the rest is analysed. Time stamps
+(sampling rate, trials at another rate, jitter and dropped frames, resampled onto a uniform grid) are
+checked by :mod:`skilllib.recordings`.
+"""
+from __future__ import annotations
+
+import io
+import re
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from . import _checks as checks, _timing as timing
+from ._parquet import is_parquet, read_parquet, release_arrow_memory
+from ._checks import (
+    _check_rates,
+    _check_units,
+)
+from ._runs import Runs
+from ._csv import read_plain, read_table
+from ._errors import DataFormatError, quote
+
+COLUMNS = ("participant", "trial", "t", "x", "y", "z", "contact")
+ID_COLUMNS = ("participant", "trial")
+POSITION_COLUMNS = ("x", "y", "z")
+T_DECIMALS, POS_DECIMALS = 4, 5  #: writer's rounding: 0.1 ms and 0.01 mm
+#: Cells of the numeric columns read as missing (NaN), as pandas reads them by default.
+NA_TEXT = frozenset({"", "NA", "N/A", "n/a", "NaN", "nan", "-nan", "-NaN", "NULL", "null", "None", "#N/A"})
+
+
+@dataclass(frozen=True)
+class Trial:
+    """The samples of one trial: ``t`` (N,) in s, ``pos`` (N, 3) in m (x, y, z), ``contact`` (N,) bool
+    (resampled onto a uniform grid when the trial's time stamps were irregular)."""
+
+    participant: str
+    trial: str
+    t: np.ndarray
+    pos: np.ndarray
+    contact: np.ndarray
+
+
+def _id(v: Any) -> str:
+    """An id given through the API as text: str as it is; an integer-valued number without ``.0``."""
+    if isinstance(v, str):
+        return v
+    if isinstance(v, (float, np.floating)) and float(v).is_integer():
+        return str(int(v))
+    return str(v)
+
+
+@dataclass(frozen=True, eq=False)
+class Recordings:
+    """Validated recordings.
+
+    ``frame``: the samples as read (columns :data:`COLUMNS`, input order, ids as text, index = 0-based
+    data row); ``trials``: one row per trial in order of first appearance, columns ``participant, trial,
+    n_samples, first_line, status`` (``ok`` or ``invalid``), ``reason`` (empty when ok) and ``timing``
+    (empty, or what resampling onto the uniform grid bridged: ``"resampled: jitter up to 1.9 ms, 1
+    dropped frame"``); ``fs``: sampling rate in Hz derived from the time stamps; ``source``: the file
+    (or ``<DataFrame>``).
+    """
+
+    frame: pd.DataFrame
+    trials: pd.DataFrame
+    fs: float
+    source: str
+    _rows: dict = field(repr=False)
+    _resampled: dict = field(repr=False, default_factory=dict)
+    _cache: dict = field(repr=False, default_factory=dict, compare=False)
+
+    def trial(self, participant: Any, trial: Any) -> Trial:
+        """The samples of one trial (whatever its status; resampled when its timing says so); KeyError if
+        there is no such trial. Ids are text; a number given here is looked up as its text (``1`` -> ``"1"``)."""
+        key = (_id(participant), _id(trial))
+        if key not in self._rows:
+            raise KeyError(f"no trial {key[1]!r} of participant {key[0]!r} in {self.source}")
+        if key in self._resampled:
+            return self._resampled[key]
+        r = self._rows[key]
+        t, pos, contact = self.arrays()
+        return Trial(key[0], key[1], t[r], pos[r], contact[r])
+
+    def arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The samples of :attr:`frame` as flat arrays (kept after the first call): ``t`` (R,) s, ``pos``
+        (R, 3) m, ``contact`` (R,) bool. Trial rows as :meth:`runs` gives them (resampled trials excepted)."""
+        if "arrays" not in self._cache:
+            f = self.frame
+            self._cache["arrays"] = (f["t"].to_numpy(dtype=float), f[list(POSITION_COLUMNS)].to_numpy(dtype=float),
+                                     f["contact"].to_numpy() == 1)
+        return self._cache["arrays"]
+
+    def runs(self) -> Runs:
+        """Trial ``i`` (order of :attr:`trials`) as rows ``start[i] .. start[i] + length[i] - 1`` of
+        :meth:`arrays`; meaningful for trials whose rows are contiguous (every usable trial)."""
+        if "runs" not in self._cache:
+            rows = [self._rows[k] for k in self.keys()]
+            start = np.array([r[0] if len(r) else 0 for r in rows], dtype=np.int64)
+            length = np.array([len(r) for r in rows], dtype=np.int64)
+            self._cache["runs"] = Runs(start, length)
+        return self._cache["runs"]
+
+    def is_resampled(self, participant: Any, trial: Any) -> bool:
+        """Whether the trial's samples were resampled onto the uniform grid (:meth:`trial` gives those)."""
+        return (_id(participant), _id(trial)) in self._resampled
+
+    def keys(self) -> list[tuple[str, str]]:
+        """(participant, trial) of every trial, in order of first appearance."""
+        return list(self._rows)
+
+    def __len__(self) -> int:
+        return len(self._rows)
+
+
+def natural_key(label: Any) -> tuple:
+    """Sort key that orders ids as people do: digit runs by value (``P2`` < ``P10``, ``2`` < ``10``),
+    then the text itself, so that ``01`` and ``1`` keep a fixed order."""
+    s = str(label)
+    return tuple((0, int(p), p) if p.isdigit() else (1, 0, p) for p in re.split(r"(\d+)", s) if p), s
+
+
+def sort_ids(labels: Iterable[Any]) -> list:
+    """``labels`` sorted by :func:`natural_key`."""
+    return sorted(labels, key=natural_key)
+
+
+def _where(source: str, place: str, column: str) -> str:
+    """"file, line 12, column 'x'" (``place`` from the caller's ``loc``)."""
+    return f"{source}, {place}, column '{column}'"
+
+
+def _check_columns(df: pd.DataFrame, source: str) -> pd.DataFrame:
+    df = df.rename(columns=lambda c: str(c).strip())
+    missing = [c for c in COLUMNS if c not in df.columns]
+    if missing:
+        found = ", ".join(map(str, df.columns))
+        hint = ""
+        if len(df.columns) == 1 and any(s in found for s in ";\t"):
+            hint = "; the file seems to use ';' or tabs: separate columns with commas"
+        elif any(str(c).lower() in COLUMNS for c in df.columns):
+            hint = "; column names are lower case"
+        else:
+            hint = "; other names can be mapped with --columns old=new,... (skilllib.recordings.map_frame)"
+        raise DataFormatError(f"{source}: required column '{missing[0]}' missing (found: {quote(found)[1:-1]}; "
+                              f"expected: {', '.join(COLUMNS)}){hint}")
+    return df
+
+
+def _blank(col: pd.Series) -> np.ndarray:
+    """Cells that are empty: NaN/None, or text of spaces only."""
+    empty = col.isna().to_numpy().copy()
+    if col.dtype == object or pd.api.types.is_string_dtype(col):
+        empty |= (col.astype("string").str.strip() == "").fillna(True).to_numpy(dtype=bool)
+    return empty
+
+
+def _numeric(col: pd.Series, name: str, source: str, loc: Callable[[int], str]) -> np.ndarray:
+    """Column as float; DataFormatError at the first cell that is not a number (:data:`NA_TEXT` is NaN)."""
+    if pd.api.types.is_numeric_dtype(col) and not pd.api.types.is_bool_dtype(col):
+        return col.to_numpy(dtype=float)
+    text = col.astype("string").str.strip()
+    missing = (text.isna() | text.isin(NA_TEXT)).to_numpy()
+    num = pd.to_numeric(text.mask(missing), errors="coerce")
+    bad = num.isna().to_numpy() & ~missing
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise DataFormatError(f"{_where(source, loc(i), name)}: {quote(text.iloc[i])} is not a number")
+    return num.to_numpy(dtype=float, na_value=np.nan)
+
+
+def _id_text(v: Any) -> str:
+    """One id cell as text: a string stripped; missing (None, NA, NaN) as ""; a number as :func:`_id`."""
+    if isinstance(v, str):
+        return v.strip()
+    if v is None or v is pd.NA or (isinstance(v, float) and np.isnan(v)):
+        return ""
+    return _id(v)
+
+
+def _factorize(col: pd.Series) -> tuple[np.ndarray, np.ndarray]:
+    """``pd.factorize(col)`` (codes, -1 for missing; the distinct values in order of first appearance);
+    an Arrow-backed column is encoded by pyarrow with 32-bit codes, without 64-bit temporaries."""
+    if isinstance(col.dtype, pd.ArrowDtype):
+        import pyarrow.compute as pc
+
+        enc = pc.dictionary_encode(col.array._pa_array).combine_chunks()
+        return enc.indices.fill_null(-1).to_numpy(), np.asarray(enc.dictionary.to_pylist(), dtype=object)
+    return pd.factorize(col, use_na_sentinel=True)
+
+
+def _ids(df: pd.DataFrame, source: str, loc: Callable[[int], str]) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Participant and trial ids as text: per column ``(codes, names)``, the row's code into the distinct
+    names (object array of str, order of first appearance). Each distinct cell is converted once
+    (:func:`_id_text`), not each row. DataFormatError at the first empty id."""
+    out = []
+    for name in ID_COLUMNS:
+        raw_codes, uniques = _factorize(df[name])
+        text = np.array([_id_text(u) for u in np.asarray(uniques, dtype=object)] + [""], dtype=object)
+        merged, names = pd.factorize(text)  # "01" and " 01" are one id; NA (code -1: the last entry) is ""
+        codes = merged.astype(np.int32)[raw_codes]
+        del raw_codes
+        names = np.asarray(names, dtype=object)
+        empty = np.flatnonzero(names == "")
+        if empty.size and (codes == empty[0]).any():
+            i = int(np.argmax(codes == empty[0]))
+            raise DataFormatError(f"{_where(source, loc(i), name)}: {name} is empty")
+        out.append((codes, names))
+    return out
+
+
+def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, lines: np.ndarray | range | None = None,
+                          places: np.ndarray | None = None, place: Callable[[int], str] | None = None,
+                          rate: tuple[float, float] | None = None) -> Recordings:
+    """Validate a long table into :class:`Recordings`; see :func:`read_recordings`. ``lines``: the
+    physical file line of each row (as :func:`read_table` gives); ``places``: a text per row naming where
+    it came from (``"P01/3.c3d, frame 12"``, for tables read from several files); ``place``: the same as a
+    function of the row (:func:`skilllib.recordings.read_parquet`); else messages name 0-based rows.
+    ``rate``: ``(ref, dt)`` in s, the median of the trials' median intervals and the sampling interval of
+    a whole corpus this table is a part of (:mod:`skilllib.features`): trials are judged against them,
+    and the corpus-wide errors (mixed rates, units) are left to the caller; ``(nan, nan)``: no rate is
+    decided (fs NaN). The per-trial statistics are kept in ``_cache["stats"]``."""
+    if not isinstance(df, pd.DataFrame):
+        raise DataFormatError(f"{source}: expected a pandas DataFrame, got {type(df).__name__}")
+    df = _check_columns(df, source)
+    blank = np.ones(len(df), dtype=bool)  # blank lines (kept for line numbers): every cell empty
+    numeric = {c: pd.api.types.is_numeric_dtype(df[c]) for c in COLUMNS}
+    for c in sorted(COLUMNS, key=lambda c: not numeric[c]):  # cheap columns first
+        if blank.any():
+            blank[blank] = _blank(df[c][blank])
+    kept = np.flatnonzero(~blank) if blank.any() else range(len(df))  # a range: no memory per row
+    if blank.any():
+        df = df.loc[~blank].reset_index(drop=True)
+    del blank
+    if df.empty:
+        raise DataFormatError(f"{source}: file is empty (a header but no data rows)")
+    where = kept if lines is None else lines if isinstance(kept, range) else lines[kept]
+
+    def line(r: int) -> int:  # the physical file line (or 0-based frame row) of kept row r
+        return int(where[r])
+
+    def loc(r: int) -> str:
+        if place is not None:
+            return place(int(kept[r]))
+        if places is not None:
+            return str(places[kept[r]])
+        return f"line {line(r)}" if lines is not None else f"row {line(r)}"
+
+    cols = {c: _numeric(df[c], c, source, loc) for c in ("t", "x", "y", "z", "contact")}
+    (p_codes, p_names), (t_codes, t_names) = _ids(df, source, loc)
+    c = cols["contact"]
+    bad = np.isfinite(c) & (c != 0) & (c != 1) | np.isinf(c)
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise DataFormatError(f"{_where(source, loc(i), 'contact')}: contact must be 0 or 1, got {c[i]:g}")
+    del df
+    frame = pd.DataFrame({"participant": pd.Categorical.from_codes(p_codes, categories=p_names),
+                          "trial": pd.Categorical.from_codes(t_codes, categories=t_names), **cols}, copy=False)
+    trial_of_row, keys = _trial_numbers(p_codes, t_codes, p_names, t_names)
+    del p_codes, t_codes
+    counts = np.bincount(trial_of_row, minlength=len(keys))
+    order = np.argsort(trial_of_row, kind="stable").astype(np.int32 if len(trial_of_row) < 2**31 else np.int64)
+    rows = np.split(order, np.cumsum(counts)[:-1])
+    pos_all = _positions(*(cols[c] for c in POSITION_COLUMNS))
+    t_all, c_all = cols["t"], cols["contact"]
+    reasons = checks.trial_problems(t_all, pos_all, c_all, trial_of_row, rows, line, loc)
+    timings = [""] * len(keys)
+    resampled: dict[tuple[str, str], Trial] = {}
+    fs = np.nan
+    usable = np.array([not r for r in reasons], dtype=bool)
+    cache: dict = {"arrays": (t_all, pos_all, c_all == 1)}
+    if usable.any():
+        runs = Runs(np.array([r[0] for r in rows], dtype=np.int64), counts.astype(np.int64))
+        stats = checks.trial_stats(t_all, pos_all, runs, usable)
+        cache["stats"] = stats
+    if usable.any() and (rate is None or np.isfinite(rate[1])):
+        dt = _check_rates(source, stats, reasons, rate)
+        _check_units(source, stats, reasons, dt, corpus_checked=rate is not None)
+        dev = np.maximum(np.abs(stats.d_min / dt - 1), np.abs(stats.d_max / dt - 1))  # NaN: not usable
+        for i in np.flatnonzero(usable & ~(dev <= timing.JITTER_TOLERANCE)):
+            if reasons[i]:
+                continue
+            r, key = rows[i], keys[i]
+            irr = timing.irregularity(t_all[r], dt)
+            if irr.gap:
+                reasons[i] = (f"gap in the time stamps: {irr.max_interval:.4f} s before {loc(r[irr.at])}, "
+                              f"{irr.max_interval / dt:.1f} sampling intervals (the file samples every {dt:.4f} s; "
+                              f"at most {timing.MAX_GAP_INTERVALS:g} are bridged by resampling)")
+            elif not irr.regular:
+                t_u, pos_u, con_u = timing.resample_uniform(t_all[r], pos_all[r], c_all[r] == 1, dt)
+                resampled[key] = Trial(key[0], key[1], t_u, pos_u, con_u)
+                timings[i] = f"resampled: {irr.describe()}"
+        fs = 1.0 / dt
+    trials = pd.DataFrame({
+        "participant": [k[0] for k in keys], "trial": [k[1] for k in keys],
+        "n_samples": counts, "first_line": [line(r[0]) for r in rows],
+        "status": ["invalid" if r else "ok" for r in reasons], "reason": reasons, "timing": timings})
+    return Recordings(frame=frame, trials=trials, fs=fs, source=source, _rows=dict(zip(keys, rows)),
+                      _resampled=resampled, _cache=cache)
+
+
+def _trial_numbers(p_codes: np.ndarray, t_codes: np.ndarray, p_names: np.ndarray,
+                   t_names: np.ndarray) -> tuple[np.ndarray, list[tuple[str, str]]]:
+    """The trial number of each row (0, 1, ... in order of first appearance of its (participant, trial))
+    and the trials' ids; computed over the runs of equal consecutive ids, not the rows."""
+    change = np.flatnonzero((p_codes[1:] != p_codes[:-1]) | (t_codes[1:] != t_codes[:-1])) + 1
+    start = np.concatenate([[0], change])
+    run_of, pairs = pd.factorize(p_codes[start].astype(np.int64) * len(t_names) + t_codes[start])
+    trial_of_row = np.repeat(run_of.astype(np.int32), np.diff(np.append(start, len(p_codes))))
+    keys = [(p_names[k // len(t_names)], t_names[k % len(t_names)]) for k in pairs.tolist()]
+    return trial_of_row, keys
+
+
+def _positions(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
+    """The (R, 3) positions: the array x, y and z are the columns of, when they are (as
+    :func:`skilllib.recordings.read_plain` gives them: no copy), else a new one."""
+    base = x
+    while isinstance(base.base, np.ndarray):
+        base = base.base
+    if base.shape == (len(x), 3) and base.dtype == float and all(
+            np.shares_memory(v, base) and v.ctypes.data == base[:, j].ctypes.data and v.strides == base[:, j].strides
+            for j, v in enumerate((x, y, z))):
+        return base
+    return np.column_stack([x, y, z])
+
+
+def read_recordings(path: str | Path) -> Recordings:
+    """Read and validate a recordings CSV (format: module docstring; compressed files as pandas infers),
+    or a Parquet file or folder of Parquet files (:mod:`skilllib.recordings`). A plain CSV file (one record
+    per line, no blank line, not compressed) is read by pyarrow's CSV reader, any other by pandas' (same
+    result, tested; line numbers in messages count physical lines either way).
+
+    Raises :class:`DataFormatError` naming the file (and line, column) when the file is missing or
+    empty, a required column is missing, a cell is not a number, an id is empty, ``contact`` is not 0/1,
+    positions look like millimetres, time stamps like milliseconds or microseconds, or trials mix sampling
+    rates. Trial-level problems (time going backwards or repeated, a gap in the time stamps, NaN/inf
+    positions, too few samples, rows not contiguous, a trial sampled at another rate) mark that trial
+    ``invalid`` with a reason; contact and onset are checked by :func:`skilllib.features.trial_features`.
+    For C3D and TRC files, folders and other column names see :func:`skilllib.recordings.load_recordings`.
+    """
+    path = Path(path)
+    if is_parquet(path):
+        frame, where = read_parquet(path, COLUMNS, natural_key)
+        rec = recordings_from_frame(frame, str(path), place=where)
+        del frame
+        release_arrow_memory()
+        return rec
+    fast = read_plain(path, ID_COLUMNS, ("t", *POSITION_COLUMNS, "contact"), NA_TEXT)
+    if fast is not None:  # a plain file: pyarrow's reader; record k is line k + 2
+        rec = recordings_from_frame(fast, str(path), lines=range(2, len(fast) + 2))
+        del fast
+        release_arrow_memory()
+        return rec
+    df, lines = read_table(path)
+    return recordings_from_frame(df, str(path), lines=lines)
+
+
+def _fmt(values: np.ndarray, decimals: int) -> list[str]:
+    v = np.round(np.asarray(values, dtype=float), decimals) + 0.0  # + 0.0 turns -0.0 into 0.0
+    return [f"{a:.{decimals}f}" for a in v]
+
+
+def format_recordings(data: pd.DataFrame | Recordings) -> str:
+    """The CSV text of ``data`` (rows in their order): ids as text, t to 0.1 ms, positions to 0.01 mm,
+    '\\n' line ends. Deterministic: the same table always gives the same text (no locale, no -0.00000).
+    """
+    df = data.frame if isinstance(data, Recordings) else data
+    missing = [c for c in COLUMNS if c not in df.columns]
+    if missing:
+        raise ValueError(f"cannot write recordings: column(s) {missing} missing")
+    out = pd.DataFrame({
+        "participant": [_id(v) for v in df["participant"]],
+        "trial": [_id(v) for v in df["trial"]],
+        "t": _fmt(df["t"], T_DECIMALS),
+        **{c: _fmt(df[c], POS_DECIMALS) for c in POSITION_COLUMNS},
+        "contact": [f"{c:.0f}" if np.isfinite(c) else "" for c in df["contact"].to_numpy(dtype=float)],
+    })
+    buf = io.StringIO()
+    out.to_csv(buf, index=False, lineterminator="\n")
+    return buf.getvalue()
+
+
+def write_recordings(data: pd.DataFrame | Recordings, path: str | Path) -> Path:
+    """Write ``data`` as a recordings CSV (:func:`format_recordings`, UTF-8); returns the path."""
+    path = Path(path)
+    path.write_bytes(format_recordings(data).encode("utf-8"))
+    return path

@@ -1,0 +1,381 @@
+"""Kinematic transfer of a hand trajectory to a robot arm: IK, Jacobian, joint velocities.
+
+The paper (Sec. 4) turns each prototype's end-effector velocity into joint velocities with
+
+    qd = J(q)^-1 v,    v = (vx, vy, vz, wx, wy, wz)  (paper eq. 2; Corke 2017, sec. 8.2)
+
+after 1) inverse kinematics for q, 2) the manipulator Jacobian in the world frame, 3) a
+singularity check. :func:`transfer` does exactly that for every sample of a trajectory, on any
+roboticstoolbox arm:
+
+* **Frames.** The experiment frame has x mediolateral, y up, z anteroposterior (m). The robot
+  base frame has z up. :data:`EXP_TO_BASE` maps experiment to base coordinates,
+  ``p_base = R @ p_exp``: robot x = experiment z (forward), robot y = experiment x,
+  robot z = experiment y (up). It is a cyclic permutation, a proper rotation (det +1).
+* **Placement.** The movement's start is put at the tool point of the start pose ``q0``;
+  the tool orientation is held at that of ``q0`` (v has no angular part: w = 0).
+* **IK.** A target outside the arm's reach shell (:mod:`skilllib.robot`: the distances from
+  the shoulder the tool point can take) is *unreachable* and not searched. Inside it,
+  :func:`skilllib.robot.solve_ik` runs Levenberg-Marquardt seeded with the previous sample's solution,
+  then restarts and other roboticstoolbox solvers, until the position residual ``|p(q) - p*|`` is within
+  :data:`IK_RESIDUAL_TOL_M` (and the orientation residual within the same number in rad) inside the
+  joint limits; if none succeeds it is an *IK failure*, reported with cond J at the last solved sample.
+* **Jacobian and singularity.** ``ETS.jacob0`` (world frame). For a square J: det J and the
+  2-norm condition number; for a redundant arm (n > 6) ``det_j`` is Yoshikawa's manipulability
+  sqrt(det(J J')) (equal to ``|det J|`` when J is square; Corke 2017, sec. 8.2.2) and qd is the
+  minimum-norm solution J^+ v (pseudo-inverse; Corke 2017, sec. 8.4.2).
+
+Problems are flagged per sample ({sample, reason}) and never hidden: an unreachable target or an
+IK failure leaves NaN in q, qd, det_j and cond_j of that sample, with a flag; a solution on another IK branch, a Jacobian with ``cond_j`` above
+:data:`COND_THRESHOLD` or a numerically singular one are flagged and still computed. The other
+samples are computed as usual.
+
+Feasibility and time scaling: a uniform time stretch t -> s t keeps the path and divides every
+velocity by s, so the smallest stretch that brings every joint within its limit is
+s = max(1, max_j peak|qd_j| / limit_j) (:func:`time_scale_factor`, :func:`apply_time_scale`).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import roboticstoolbox as rtb
+
+from ._ik import IK_RESTARTS, solve_ik
+from ._arms import get_robot, qd_limits_vector
+from ..smoothness import DEFAULT_FC, sparc
+from ._reach import reach_shell
+
+#: Experiment -> robot base rotation, ``p_base = EXP_TO_BASE @ p_exp`` (det +1):
+#: base x = exp z (anteroposterior, forward), base y = exp x (mediolateral), base z = exp y (up).
+EXP_TO_BASE: np.ndarray = np.array([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+
+#: Largest accepted IK position residual, m (and orientation residual, rad).
+IK_RESIDUAL_TOL_M: float = 1e-6
+
+#: Condition number of J above which a sample is flagged ill-conditioned. J mixes m/rad (linear
+#: rows) and 1 (angular rows), so cond depends on the length unit; with metres the start poses
+#: of the book's arms have cond 3 to 9, and 100 means a velocity error is amplified 100 times
+#: more in one direction than in another: close to a singularity.
+COND_THRESHOLD: float = 100.0
+
+#: Condition number above which J is treated as numerically singular (qd by least squares).
+SINGULAR_COND: float = 1e12
+
+#: Largest joint step between consecutive samples (rad) still taken as the same IK branch.
+BRANCH_JUMP_RAD: float = 0.5
+
+#: Tolerance (rad) of the joint-limit checks of q0 and of every IK solution.
+JOINT_LIMIT_TOL_RAD: float = 1e-9
+
+#: Relative tolerance of the velocity-limit check: a peak up to limit * (1 + this) is within the limit.
+QD_LIMIT_RTOL: float = 1e-9
+
+
+@dataclass
+class TransferResult:
+    """Joint-space transfer of one trajectory; arrays per sample (N samples, n joints).
+
+    t (s), x_base (N, 3) target tool positions in the base frame (m), q (N, n) rad, qd (N, n)
+    rad/s, det_j (det J, or manipulability for n != 6), cond_j, ik_residual_m (m), flags
+    (list of ``{"sample": int, "reason": str}``; ``reason`` starts with ``unreachable`` (outside the
+    reach shell), ``ik_failed`` (inside it, no solver succeeded), ``ik_branch_jump``, ``ill_conditioned``
+    or ``singular``), qd_limits (n,) rad/s, v_base (N, 3) the commanded tool velocities in the base
+    frame (m/s).
+    """
+
+    robot: str
+    q0: np.ndarray
+    qd_limits: np.ndarray
+    t: np.ndarray
+    x_base: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    det_j: np.ndarray
+    cond_j: np.ndarray
+    ik_residual_m: np.ndarray
+    flags: list[dict[str, Any]] = field(default_factory=list)
+    cluster: int | None = None
+    v_base: np.ndarray | None = None
+
+    @property
+    def peak_abs_qd(self) -> np.ndarray:
+        """Peak ``|qd_j|`` per joint over the computed samples, rad/s (NaN if none was computed)."""
+        ok = np.all(np.isfinite(self.qd), axis=1)
+        if not ok.any():
+            return np.full(self.qd.shape[1], np.nan)
+        return np.max(np.abs(self.qd[ok]), axis=0)
+
+    @property
+    def min_abs_det_j(self) -> float:
+        """Smallest ``|det J|`` (manipulability for n != 6) over the computed samples."""
+        return _nan_reduce(np.min, np.abs(self.det_j))
+
+    @property
+    def max_cond_j(self) -> float:
+        """Largest condition number of J over the computed samples."""
+        return _nan_reduce(np.max, self.cond_j)
+
+    @property
+    def ik_max_residual_m(self) -> float:
+        """Largest IK position residual, m (failed samples included where a best attempt had a finite residual)."""
+        return _nan_reduce(np.max, self.ik_residual_m)
+
+    @property
+    def time_scale(self) -> float:
+        """Smallest uniform time stretch s >= 1 bringing every joint within its limit."""
+        return time_scale_factor(self.peak_abs_qd, self.qd_limits)
+
+    @property
+    def within_limits(self) -> bool:
+        """True when every computed joint velocity is within its limit (relative tolerance QD_LIMIT_RTOL)."""
+        peak = self.peak_abs_qd
+        return bool(np.all(np.isfinite(peak)) and np.all(peak <= self.qd_limits * (1 + QD_LIMIT_RTOL)))
+
+    @property
+    def feasible(self) -> bool:
+        """True when nothing was flagged and every joint is within its velocity limit."""
+        return not self.flags and self.within_limits
+
+    def summary(self) -> dict[str, Any]:
+        """The per-prototype entry of results.json (plain floats/lists; None for undefined)."""
+        return {
+            "cluster": None if self.cluster is None else int(self.cluster),
+            "peak_abs_qd": [_plain(v) for v in self.peak_abs_qd],
+            "min_abs_det_j": _plain(self.min_abs_det_j),
+            "max_cond_j": _plain(self.max_cond_j),
+            "ik_max_residual_m": _plain(self.ik_max_residual_m),
+            "feasible": bool(self.feasible),
+            "time_scale": _plain(self.time_scale),
+            "flags": [{"sample": int(f["sample"]), "reason": str(f["reason"])} for f in self.flags],
+        }
+
+
+def _nan_reduce(fn: Any, x: np.ndarray) -> float:
+    x = np.asarray(x, dtype=float)
+    x = x[np.isfinite(x)]
+    return float(fn(x)) if x.size else float("nan")
+
+
+def _plain(x: float) -> float | None:
+    x = float(x)
+    return x if np.isfinite(x) else None
+
+
+def time_scale_factor(peak_abs_qd: np.ndarray, qd_limits: float | np.ndarray) -> float:
+    """Smallest uniform time-scaling factor s >= 1 that brings every joint within its limit.
+
+    A uniform stretch t -> s t of the same path divides every joint velocity by s, so
+    s = max(1, max_j peak|qd_j| / limit_j). ``peak_abs_qd`` rad/s (n,), ``qd_limits`` rad/s
+    (scalar or (n,)). NaN peaks (joints never computed) are ignored; all NaN gives NaN.
+    """
+    peak = np.asarray(peak_abs_qd, dtype=float)
+    lim = qd_limits_vector(qd_limits, peak.size)
+    ratio = peak / lim
+    ratio = ratio[np.isfinite(ratio)]
+    if not ratio.size:
+        return float("nan")
+    s = float(ratio.max())
+    return s if s > 1.0 + QD_LIMIT_RTOL else 1.0  # within the tolerance of within_limits: no stretch
+
+
+def apply_time_scale(t: np.ndarray, velocity: np.ndarray, s: float) -> tuple[np.ndarray, np.ndarray]:
+    """Stretch a trajectory uniformly in time by ``s`` (> 0): t -> t0 + s (t - t0), v -> v / s.
+
+    ``t`` in s, ``velocity`` a speed profile (N,) or velocities (N, 3) in m/s (or joint velocities,
+    rad/s). The start time t0 and the positions are unchanged; the sampling interval becomes s dt.
+    Peak speed (PV) is divided by s. SPARC is unchanged when its frequency band is ended by the
+    amplitude threshold: the spectrum is only rescaled in frequency (by 1/s) and amplitude, both
+    normalised away by SPARC. With a fixed cut-off fc (Hz) and a profile truncated at contact (spectrum
+    still above the threshold at fc), SPARC changes unless fc is scaled by 1/s too.
+    """
+    t = np.asarray(t, dtype=float)
+    v = np.asarray(velocity, dtype=float)
+    if not np.isfinite(s) or s <= 0:
+        raise ValueError(f"time scale s must be positive and finite, got {s}")
+    if v.shape[0] != t.shape[0]:
+        raise ValueError(f"velocity has {v.shape[0]} samples but t has {t.shape[0]}")
+    return t[0] + s * (t - t[0]), v / s
+
+
+def time_scaled_features(speed: np.ndarray, fs: float, s: float, fc: float = DEFAULT_FC) -> dict[str, float]:
+    """PV (m/s) and SPARC of a speed profile (m/s, sampled at ``fs`` Hz) slowed uniformly by ``s``.
+
+    On the stretched samples themselves (``fs / s`` Hz apart, :func:`apply_time_scale`): ``pv`` and
+    ``sparc_fc_scaled``, SPARC with the cut-off scaled to ``fc / s``, which equals the original's exactly
+    (the same samples on a frequency axis compressed by s). As a recording of the slowed movement at the
+    experiment's rate would give it, after linear resampling at ``fs`` (``n_resampled`` samples):
+    ``pv_resampled``, ``sparc_resampled_fc_scaled`` (cut-off fc / s) and ``sparc_resampled_fixed_fc``
+    (cut-off fc, the pipeline's measurement). A fixed fc on the stretched samples themselves is not
+    offered: their Nyquist frequency fs / (2 s) falls below fc once s > fs / (2 fc).
+    """
+    v = np.asarray(speed, dtype=float)
+    t_s, v_s = apply_time_scale(np.arange(v.size) / fs, v, s)  # the stretched samples, s / fs apart
+    t_r = np.arange(t_s[0], t_s[-1] + 1e-9, 1 / fs)
+    v_r = np.interp(t_r, t_s, v_s)
+    return {"pv": float(v_s.max()), "sparc_fc_scaled": sparc(v_s, fs / s, fc=fc / s),
+            "n_resampled": int(v_r.size), "pv_resampled": float(v_r.max()),
+            "sparc_resampled_fc_scaled": sparc(v_r, fs, fc=fc / s), "sparc_resampled_fixed_fc": sparc(v_r, fs, fc=fc)}
+
+
+def minimum_jerk_descent(amplitude: float = 0.2, peak_speed: float = 1.0, fs: float = 60.0,
+                         fraction: float = 0.7) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A synthetic prototype: a vertical downward minimum-jerk movement cut at contact.
+
+    Minimum-jerk position s(tau) = A (10 tau^3 - 15 tau^4 + 6 tau^5), speed peak 1.875 A / T
+    (Flash & Hogan 1985), so T = 1.875 A / ``peak_speed``; ``amplitude`` A in m, ``peak_speed`` in
+    m/s. Sampled at ``fs`` Hz from t = 0 while s <= ``fraction`` A: the movement ends at contact
+    with non-zero speed, like the experiment's trials. Returns t (s), positions (N, 3) m and
+    velocities (N, 3) m/s in the experiment frame (moving along -y, starting at the origin).
+    """
+    if amplitude <= 0 or peak_speed <= 0 or fs <= 0 or not 0 < fraction <= 1:
+        raise ValueError("amplitude (m), peak_speed (m/s), fs (Hz) must be positive and 0 < fraction <= 1")
+    T = 1.875 * amplitude / peak_speed
+    t = np.arange(0.0, T + 0.5 / fs, 1.0 / fs)
+    tau = np.clip(t / T, 0.0, 1.0)
+    s = amplitude * (10 * tau**3 - 15 * tau**4 + 6 * tau**5)
+    keep = s <= fraction * amplitude + 1e-12
+    sd = amplitude / T * 30 * tau**2 * (1 - tau) ** 2
+    pos = np.zeros((t.size, 3))
+    vel = np.zeros((t.size, 3))
+    pos[:, 1], vel[:, 1] = -s, -sd
+    return t[keep], pos[keep], vel[keep]
+
+
+def to_base_frame(positions: np.ndarray, velocities: np.ndarray, start: np.ndarray,
+                  rotation: np.ndarray = EXP_TO_BASE) -> tuple[np.ndarray, np.ndarray]:
+    """Experiment-frame positions (N, 3) m and velocities (N, 3) m/s in the robot base frame.
+
+    ``p_base = start + R (p - p[0])`` puts the movement's start at ``start`` (m, base frame);
+    ``v_base = R v``.
+    """
+    R = np.asarray(rotation, dtype=float)
+    if R.shape != (3, 3) or not np.allclose(R @ R.T, np.eye(3), atol=1e-9) or np.linalg.det(R) < 0:
+        raise ValueError("rotation must be a proper 3x3 rotation matrix (R R' = I, det R = +1)")
+    p = np.asarray(positions, dtype=float)
+    v = np.asarray(velocities, dtype=float)
+    return np.asarray(start, dtype=float) + (p - p[0]) @ R.T, v @ R.T
+
+
+def _check_inputs(t: np.ndarray, pos: np.ndarray, vel: np.ndarray) -> None:
+    if t.ndim != 1 or t.size < 1:
+        raise ValueError(f"t must be a non-empty 1-D array of times (s), got shape {t.shape}")
+    if pos.shape != (t.size, 3) or vel.shape != (t.size, 3):
+        raise ValueError(f"positions and velocities must have shape ({t.size}, 3), "
+                         f"got {pos.shape} and {vel.shape}")
+    if not (np.all(np.isfinite(t)) and np.all(np.isfinite(pos)) and np.all(np.isfinite(vel))):
+        raise ValueError("t, positions and velocities must be finite (no NaN or inf)")
+    if t.size > 1 and np.any(np.diff(t) <= 0):
+        raise ValueError("t must be strictly increasing")
+
+
+def transfer(robot: rtb.Robot | str, t: np.ndarray, positions: np.ndarray, velocities: np.ndarray,
+             q0: np.ndarray | None = None, qd_limits: float | np.ndarray | None = None,
+             rotation: np.ndarray = EXP_TO_BASE, cond_threshold: float = COND_THRESHOLD,
+             cluster: int | None = None) -> TransferResult:
+    """Joint angles and velocities that make ``robot`` execute a hand trajectory (paper Sec. 4).
+
+    ``robot`` is a roboticstoolbox arm or a name for :func:`skilllib.robot.get_robot` (which then
+    also supplies ``q0`` and ``qd_limits`` unless given). ``t`` (N,) s; ``positions`` (N, 3) m and
+    ``velocities`` (N, 3) m/s in the experiment frame (x mediolateral, y up, z anteroposterior).
+    ``q0`` (n,) rad: the start pose, whose tool point receives the movement's start and whose
+    tool orientation is kept; it must lie within the joint limits ``qlim``. ``qd_limits`` rad/s, scalar or (n,); required for an arm given as
+    an object. Per sample: IK seeded with the previous solution (position residual <= 1e-6 m,
+    checked), J = jacob0(q), det J / cond J, qd = J^-1 v with v = (R v_exp, 0, 0, 0)
+    (``np.linalg.solve``; least-squares minimum-norm solution J^+ v when n != 6). Corke 2017,
+    sec. 7.2.2 (numerical IK) and 8.2 (resolved-rate motion).
+    """
+    if isinstance(robot, str):
+        setup = get_robot(robot)
+        robot = setup.robot
+        q0 = setup.q0 if q0 is None else q0
+        qd_limits = setup.qd_limits if qd_limits is None else qd_limits
+    if q0 is None or qd_limits is None:
+        raise ValueError("q0 (rad) and qd_limits (rad/s) are required when robot is not given by name")
+    ets = robot.ets()
+    n = ets.n
+    if n < 6:
+        raise ValueError(f"{robot.name} has {n} joints; a fixed tool orientation plus a path needs at least 6")
+    q0 = np.asarray(q0, dtype=float)
+    if q0.shape != (n,):
+        raise ValueError(f"q0 must have {n} joint angles (rad), got shape {q0.shape}")
+    qlim = np.asarray(ets.qlim, dtype=float)
+    outside = np.nonzero((q0 < qlim[0] - JOINT_LIMIT_TOL_RAD) | (q0 > qlim[1] + JOINT_LIMIT_TOL_RAD))[0]
+    if outside.size:
+        raise ValueError(f"q0 is outside the joint limits of {robot.name} at joint(s) "
+                         f"{', '.join(f'q{j + 1}' for j in outside)}")
+    lim = qd_limits_vector(qd_limits, n)
+    t = np.asarray(t, dtype=float)
+    pos = np.asarray(positions, dtype=float)
+    vel = np.asarray(velocities, dtype=float)
+    _check_inputs(t, pos, vel)
+
+    T0 = ets.eval(q0)
+    x_base, v_base = to_base_frame(pos, vel, T0[:3, 3], rotation)
+    N = t.size
+    q = np.full((N, n), np.nan)
+    qd = np.full((N, n), np.nan)
+    det_j = np.full(N, np.nan)
+    cond_j = np.full(N, np.nan)
+    residual = np.full(N, np.nan)
+    flags: list[dict[str, Any]] = []
+    shell = reach_shell(robot)
+    out_of_reach = shell.outside(x_base)
+    q_prev, k_prev = q0, -1
+    for k in range(N):
+        if out_of_reach[k]:
+            flags.append({"sample": k, "reason": f"unreachable: the target lies {shell.describe(x_base[k])}"})
+            continue
+        target = T0.copy()
+        target[:3, 3] = x_base[k]
+        ans = solve_ik(ets, target, q_prev, k, tol=IK_RESIDUAL_TOL_M, joint_tol=JOINT_LIMIT_TOL_RAD,
+                       restarts=IK_RESTARTS)
+        qk, residual[k] = ans.q, ans.residual_m
+        if not ans.ok:
+            last = (f"cond J = {cond_j[k_prev]:.3g} at the last solved sample {k_prev}" if k_prev >= 0
+                    else "no sample solved before")
+            flags.append({"sample": k, "reason": f"ik_failed: no solver found a pose within the joint limits "
+                                                 f"({ans.why()}) although the target lies "
+                                                 f"{shell.describe(x_base[k])}; {last}"})
+            continue
+        step = float(np.max(np.abs(qk - q_prev)))
+        if step > BRANCH_JUMP_RAD:
+            flags.append({"sample": k, "reason": f"ik_branch_jump: joints move {step:.3g} rad in one sample"})
+        q[k] = q_prev = qk
+        k_prev = k
+        J = ets.jacob0(qk)
+        s = np.linalg.svd(J, compute_uv=False)
+        cond_j[k] = s[0] / s[-1] if s[-1] > 0 else np.inf
+        det_j[k] = np.linalg.det(J) if J.shape[0] == J.shape[1] else float(np.prod(s))
+        v = np.concatenate([v_base[k], np.zeros(3)])
+        if not np.isfinite(cond_j[k]) or cond_j[k] > SINGULAR_COND:
+            flags.append({"sample": k, "reason": f"singular: cond J = {cond_j[k]:.3g}; least-squares qd"})
+            qd[k] = np.linalg.lstsq(J, v, rcond=None)[0]
+            continue
+        if cond_j[k] > cond_threshold:
+            flags.append({"sample": k, "reason": f"ill_conditioned: cond J = {cond_j[k]:.3g} > {cond_threshold:g}"})
+        qd[k] = np.linalg.solve(J, v) if J.shape[0] == J.shape[1] else np.linalg.lstsq(J, v, rcond=None)[0]
+    return TransferResult(robot=robot.name, q0=q0, qd_limits=lim, t=t, x_base=x_base, q=q, qd=qd,
+                          det_j=det_j, cond_j=cond_j, ik_residual_m=residual, flags=flags, cluster=cluster,
+                          v_base=v_base)
+
+
+def transfer_summary(results: list[TransferResult]) -> dict[str, Any]:
+    """The ``transfer`` block of results.json for results on one arm from one start pose.
+
+    Keys: ``robot``, ``q0_deg`` (deg, rounded to 1e-9), ``qd_limits`` (rad/s) and ``prototypes`` (one
+    :meth:`TransferResult.summary` per result, in the given order).
+    """
+    if not results:
+        raise ValueError("transfer_summary needs at least one TransferResult")
+    first = results[0]
+    for r in results[1:]:
+        if r.robot != first.robot or not np.allclose(r.q0, first.q0):
+            raise ValueError("all results must come from the same robot and start pose q0")
+    return {
+        "robot": first.robot,
+        "q0_deg": [round(float(v), 9) + 0.0 for v in np.rad2deg(first.q0)],  # -60, not -59.99999999999999
+        "qd_limits": [float(v) for v in first.qd_limits],
+        "prototypes": [r.summary() for r in results],
+    }

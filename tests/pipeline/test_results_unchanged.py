@@ -1,0 +1,43 @@
+"""The default run's results.json is the one of the code before the redesign of issue 21, but for the
+renames of schema 2: the restructuring of the package changed no number, no trial, no message."""
+
+from __future__ import annotations
+
+import gzip
+import json
+from pathlib import Path
+
+import pytest
+
+from skilllib.pipeline import run
+
+BEFORE = Path(__file__).resolve().parents[1] / "fixtures" / "pipeline" / "results_before_issue21.json.gz"
+
+
+def schema_2(results: dict) -> dict:
+    """Schema 1 (before issue 21) in the names of schema 2: ``feasible`` and ``time_scale`` cover every
+    limit; the velocity limits' verdict is ``feasible_velocity``."""
+    out = {"schema_version": 2, **results}
+    for p in out["transfer"]["prototypes"]:
+        p["feasible_velocity"] = p.pop("feasible")
+        del p["time_scale"]
+        p["time_scale"] = p.pop("time_scale_all_limits")
+        p["feasible"] = p.pop("feasible_all_limits")
+    return out
+
+
+@pytest.mark.slow  # the whole default run (about 7 s)
+def test_the_default_run_is_unchanged_by_the_redesign(tmp_path):
+    run(out=tmp_path / "out", write_figures=False)
+    got = json.loads((tmp_path / "out" / "results.json").read_text())
+    want = schema_2(json.loads(gzip.decompress(BEFORE.read_bytes())))
+    for r in (got, want):
+        r.pop("skilllib_version")
+    assert got.keys() == want.keys()
+    for key in want:
+        assert got[key] == want[key], key
+    for g, w in zip(got["transfer"]["prototypes"], want["transfer"]["prototypes"], strict=True):
+        assert list(g) == sorted(w, key=list(g).index)  # same keys
+    assert sum(p["feasible"] for p in got["transfer"]["prototypes"]) < sum(
+        p["feasible_velocity"] for p in got["transfer"]["prototypes"]
+    )  # on the cohort acceleration binds: the two verdicts differ, so a swap of the names would show
