@@ -3,6 +3,7 @@ import of the libraries a run needs (what --help used to import), interleaved, m
 
     .venv/bin/python benchmarks/bench_cli.py [--repeats R]
 """
+
 from __future__ import annotations
 
 import argparse
@@ -17,7 +18,10 @@ CASES = {
     "python -m skilllib --version": [sys.executable, "-m", "skilllib", "--version"],
     "python -c pass (the interpreter alone)": [sys.executable, "-c", "pass"],
     "import pandas, sklearn, roboticstoolbox, matplotlib": [
-        sys.executable, "-c", "import pandas, sklearn.cluster, roboticstoolbox, matplotlib.pyplot"],
+        sys.executable,
+        "-c",
+        "import pandas, sklearn.cluster, roboticstoolbox, matplotlib.pyplot",
+    ],
 }
 
 

@@ -11,6 +11,7 @@ BLAS and OpenMP are limited to one thread ("features on one core"); pyarrow's re
     .venv/bin/python benchmarks/corpus.py --copies 100 --out _build/bench/c100.csv
     .venv/bin/python benchmarks/bench_features.py _build/bench/c100.csv --reference 15000
 """
+
 from __future__ import annotations
 
 import argparse
@@ -30,9 +31,8 @@ sys.path.insert(0, str(ROOT / "tests"))
 
 from test_batch import reference_features  # noqa: E402  (the per-trial loop, the tests' reference)
 
-from skilllib.recordings import read_table
-from skilllib.recordings import read_recordings, recordings_from_frame
 from skilllib.features import trial_features
+from skilllib.recordings import read_recordings, read_table, recordings_from_frame
 
 
 def timed(fn, *args, **kwargs):
@@ -71,14 +71,18 @@ def main() -> None:
     print(f"corpus: {args.csv} ({args.csv.stat().st_size / 1e6:.0f} MB), {n:,} trials; medians of {args.repeats}")
     print("| stage | trials | time (s) | trials/s |")
     print("|---|---:|---:|---:|")
-    for name, k, ts in (("read + validate, pyarrow (plain CSV)", n, t_fast),
-                        ("read + validate, pandas reader", n, t_slow),
-                        ("features, vectorised (all trials)", n, t_vec),
-                        (f"features, vectorised (first {len(part):,})", len(part), t_vec_part),
-                        (f"features, per-trial loop (first {len(part):,})", len(part), t_ref)):
+    for name, k, ts in (
+        ("read + validate, pyarrow (plain CSV)", n, t_fast),
+        ("read + validate, pandas reader", n, t_slow),
+        ("features, vectorised (all trials)", n, t_vec),
+        (f"features, vectorised (first {len(part):,})", len(part), t_vec_part),
+        (f"features, per-trial loop (first {len(part):,})", len(part), t_ref),
+    ):
         print(f"| {name} | {k:,} | {m(ts):.2f} | {k / m(ts):,.0f} |")
-    print(f"\nspeed-up of the features on the same {len(part):,} trials: {m(t_ref) / m(t_vec_part):.0f}x; "
-          f"of reading: {m(t_slow) / m(t_fast):.1f}x")
+    print(
+        f"\nspeed-up of the features on the same {len(part):,} trials: {m(t_ref) / m(t_vec_part):.0f}x; "
+        f"of reading: {m(t_slow) / m(t_fast):.1f}x"
+    )
     assert np.isfinite(m(t_vec))
 
 

@@ -27,6 +27,7 @@ in-memory path's projected peak memory against this machine's RAM.
     .venv/bin/python benchmarks/bench_scale.py --mode dask --workers 2 --repeats 3 \\
         --json _build/bench/scale.json --out-md _build/bench/scale.md
 """
+
 from __future__ import annotations
 
 import argparse
@@ -42,7 +43,7 @@ import sys
 import threading
 import time
 from collections.abc import Sequence
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from pathlib import Path
 
 import numpy as np
@@ -63,6 +64,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # benchmarks/corpus.py
 
 
 # ----------------------------------------------------------------------------------------------- corpora
+
 
 def corpus_path(copies: int, kind: str, bench_dir: Path = BENCH_DIR, per_file: int = 10) -> Path:
     """Where the corpus of ``copies`` copies lives: ``cC.csv`` or the folder ``cC-pqK``."""
@@ -89,6 +91,7 @@ def ensure_corpus(copies: int, kind: str, bench_dir: Path = BENCH_DIR, per_file:
 
 
 # ----------------------------------------------------------------------------------------------- one run
+
 
 def run_command(data: Path, out: Path, mode: str = "inmemory", workers: int = 2) -> list[str]:
     cmd = [sys.executable, "-m", "skilllib", "run", "--data", str(data), "--out", str(out), "--no-figures", "--quiet"]
@@ -122,8 +125,17 @@ def _unknown_option(stderr: str) -> str | None:
     return m.group(1).strip() if m else None
 
 
-def measure(data: Path, out: Path, *, mode: str = "inmemory", workers: int = 2, input_kind: str = "csv",
-            n_trials: int | None = None, poll_s: float = POLL_S, timeout_s: float | None = None) -> dict:
+def measure(
+    data: Path,
+    out: Path,
+    *,
+    mode: str = "inmemory",
+    workers: int = 2,
+    input_kind: str = "csv",
+    n_trials: int | None = None,
+    poll_s: float = POLL_S,
+    timeout_s: float | None = None,
+) -> dict:
     """Run the pipeline once on ``data`` into the folder ``out``; time it and sample its memory.
 
     The command's stdout and stderr go to ``out.stdout.txt`` and ``out.stderr.txt`` beside ``out``.
@@ -142,8 +154,9 @@ def measure(data: Path, out: Path, *, mode: str = "inmemory", workers: int = 2, 
 
     with open(log_out, "wb") as fo, open(log_err, "wb") as fe:
         t0 = time.perf_counter()
-        proc = subprocess.Popen(cmd, stdout=fo, stderr=fe, stdin=subprocess.DEVNULL, cwd=ROOT,
-                                start_new_session=True)  # its own process group: a timeout ends its workers too
+        proc = subprocess.Popen(
+            cmd, stdout=fo, stderr=fe, stdin=subprocess.DEVNULL, cwd=ROOT, start_new_session=True
+        )  # its own process group: a timeout ends its workers too
 
         def reap() -> None:  # blocks until the run ends: its exact end time
             proc.wait()
@@ -184,8 +197,13 @@ def measure(data: Path, out: Path, *, mode: str = "inmemory", workers: int = 2, 
     read = re.search(r"trials read: (\d+)", stdout)
     largest = max(peak_child, key=peak_child.get) if peak_child else None
     return {
-        "trials": n_trials, "input": input_kind, "mode": mode, "workers": workers if mode == "dask" else None,
-        "exit_code": code, "timed_out": timed_out, "wall_s": wall,
+        "trials": n_trials,
+        "input": input_kind,
+        "mode": mode,
+        "workers": workers if mode == "dask" else None,
+        "exit_code": code,
+        "timed_out": timed_out,
+        "wall_s": wall,
         "peak_main_mb": peak_main / MB,
         "peak_worker_mb": peak_child[largest] / MB if largest else None,
         "n_children": len(peak_child),
@@ -194,14 +212,18 @@ def measure(data: Path, out: Path, *, mode: str = "inmemory", workers: int = 2, 
         "trials_read": int(read.group(1)) if read else None,
         "unknown_option": _unknown_option(stderr) if code == 2 else None,
         "stderr_tail": stderr.strip().splitlines()[-1] if stderr.strip() else "",
-        "cmd": cmd, "data": str(data), "out": str(out),
+        "cmd": cmd,
+        "data": str(data),
+        "out": str(out),
     }
 
 
 # ----------------------------------------------------------------------------------------------- fits
 
-def fit_scaling(ns: Sequence[float], values: Sequence[float], *, min_n: float = FIT_MIN_TRIALS,
-                target: float = TARGET_TRIALS) -> dict:
+
+def fit_scaling(
+    ns: Sequence[float], values: Sequence[float], *, min_n: float = FIT_MIN_TRIALS, target: float = TARGET_TRIALS
+) -> dict:
     """How ``values`` (times, or memory) grow with ``ns`` (trials), and what that projects for ``target``.
 
     * ``slope``: least squares of log(value) on log(n) over the sizes >= ``min_n`` (1 = linear); over all
@@ -212,8 +234,16 @@ def fit_scaling(ns: Sequence[float], values: Sequence[float], *, min_n: float = 
     """
     pts = sorted((float(n), float(v)) for n, v in zip(ns, values, strict=True) if n > 0 and v is not None and v > 0)
     big = [p for p in pts if p[0] >= min_n]
-    out: dict = {"target": target, "slope": None, "basis": None, "reliable": False, "sizes": [],
-                 "per_million": None, "linear": None, "power": None}
+    out: dict = {
+        "target": target,
+        "slope": None,
+        "basis": None,
+        "reliable": False,
+        "sizes": [],
+        "per_million": None,
+        "linear": None,
+        "power": None,
+    }
     out["reliable"] = len(big) >= 2
     if len(big) >= 2:
         use, out["basis"] = big, f"sizes >= {min_n:,.0f} trials"
@@ -250,6 +280,7 @@ def _gb(mb: float | None) -> str:
 
 # ----------------------------------------------------------------------------------------------- report
 
+
 def _mode_label(mode: str, workers: int | None) -> str:
     return "in-memory" if mode == "inmemory" else f"Dask, {workers} workers"
 
@@ -273,21 +304,31 @@ def summarize(records: list[dict]) -> list[dict]:
         ok = [r for r in rs if r["exit_code"] == 0]
         workers_mb = [r["peak_worker_mb"] for r in ok if r["peak_worker_mb"] is not None]
         wall = statistics.median(r["wall_s"] for r in ok) if ok else None
-        rows.append({
-            "trials": n, "input": kind, "mode": mode, "workers": workers, "repeats": len(rs),
-            "failed": len(bad), "exit_code": bad[0]["exit_code"] if bad else 0,
-            "error": _why(bad[0]) if bad else None,
-            "unknown_option": bad[0]["unknown_option"] if bad else None,
-            "wall_s": wall, "peak_main_mb": statistics.median(r["peak_main_mb"] for r in ok) if ok else None,
-            "peak_worker_mb": statistics.median(workers_mb) if workers_mb else None,
-            "trials_per_s": n / wall if wall else None,
-        })
+        rows.append(
+            {
+                "trials": n,
+                "input": kind,
+                "mode": mode,
+                "workers": workers,
+                "repeats": len(rs),
+                "failed": len(bad),
+                "exit_code": bad[0]["exit_code"] if bad else 0,
+                "error": _why(bad[0]) if bad else None,
+                "unknown_option": bad[0]["unknown_option"] if bad else None,
+                "wall_s": wall,
+                "peak_main_mb": statistics.median(r["peak_main_mb"] for r in ok) if ok else None,
+                "peak_worker_mb": statistics.median(workers_mb) if workers_mb else None,
+                "trials_per_s": n / wall if wall else None,
+            }
+        )
     return rows
 
 
 def markdown_table(rows: list[dict]) -> str:
-    lines = ["| trials | input | mode | wall time (s) | peak memory (MB) | per worker (MB) | trials/s |",
-             "|---:|---|---|---:|---:|---:|---:|"]
+    lines = [
+        "| trials | input | mode | wall time (s) | peak memory (MB) | per worker (MB) | trials/s |",
+        "|---:|---|---|---:|---:|---:|---:|",
+    ]
     for r in rows:
         mode = _mode_label(r["mode"], r["workers"])
         if r["failed"]:
@@ -298,8 +339,10 @@ def markdown_table(rows: list[dict]) -> str:
                 continue
             mode += f"; {failed}"
         worker = "–" if r["peak_worker_mb"] is None else f"{r['peak_worker_mb']:,.0f}"
-        lines.append(f"| {r['trials']:,} | {r['input']} | {mode} | {r['wall_s']:,.1f} | {r['peak_main_mb']:,.0f} "
-                     f"| {worker} | {r['trials_per_s']:,.0f} |")
+        lines.append(
+            f"| {r['trials']:,} | {r['input']} | {mode} | {r['wall_s']:,.1f} | {r['peak_main_mb']:,.0f} "
+            f"| {worker} | {r['trials_per_s']:,.0f} |"
+        )
     return "\n".join(lines)
 
 
@@ -325,36 +368,53 @@ def projections(rows: list[dict], ram_mb: float, target: float = TARGET_TRIALS) 
         e = f"10^{round(math.log10(target))}"
         sizes = ", ".join(f"{n:,}" for n in ft["sizes"])
         if ft["reliable"]:
-            lines.append(f"- {name}: time ~ N^{ft['slope']:.2f} (log-log least squares over {ft['basis']}: "
-                         f"{sizes}); {ft['per_million']:,.0f} s per 10^6 trials (from the two largest sizes, "
-                         f"{ns[-2]:,} and {ns[-1]:,}).")
-            lines.append(f"  {e} trials: {_duration(ft['linear'])} at that linear cost, "
-                         f"{_duration(ft['power'])} on the power law.")
+            lines.append(
+                f"- {name}: time ~ N^{ft['slope']:.2f} (log-log least squares over {ft['basis']}: "
+                f"{sizes}); {ft['per_million']:,.0f} s per 10^6 trials (from the two largest sizes, "
+                f"{ns[-2]:,} and {ns[-1]:,})."
+            )
+            lines.append(
+                f"  {e} trials: {_duration(ft['linear'])} at that linear cost, "
+                f"{_duration(ft['power'])} on the power law."
+            )
         else:
-            lines.append(f"- {name}: no slope fitted: it needs two sizes >= {FIT_MIN_TRIALS:,} trials (here {sizes}; "
-                         f"N^{ft['slope']:.2f} between them, start-up dominated). Indicative only: "
-                         f"{ft['per_million']:,.0f} s per 10^6 trials between the two -> {_duration(ft['linear'])} "
-                         f"for {e} trials.")
+            lines.append(
+                f"- {name}: no slope fitted: it needs two sizes >= {FIT_MIN_TRIALS:,} trials (here {sizes}; "
+                f"N^{ft['slope']:.2f} between them, start-up dominated). Indicative only: "
+                f"{ft['per_million']:,.0f} s per 10^6 trials between the two -> {_duration(ft['linear'])} "
+                f"for {e} trials."
+            )
         if mode == "inmemory":
             need = fm["linear"] if not fm["reliable"] else max(fm["linear"], fm["power"])
             power = f"; {_gb(fm['power'])} on the power law N^{fm['slope']:.2f}" if fm["reliable"] else ""
-            lines.append(f"  peak memory of the process: {fm['per_million']:,.0f} MB per 10^6 trials -> "
-                         f"{_gb(fm['linear'])} for {e} trials (linear{power}"
-                         f"{'' if fm['reliable'] else '; indicative, from small sizes'}).")
+            lines.append(
+                f"  peak memory of the process: {fm['per_million']:,.0f} MB per 10^6 trials -> "
+                f"{_gb(fm['linear'])} for {e} trials (linear{power}"
+                f"{'' if fm['reliable'] else '; indicative, from small sizes'})."
+            )
             if need > ram_mb:
-                lines.append(f"  That exceeds this machine's RAM ({_gb(ram_mb)}): {e} trials do not fit in memory "
-                             "here and need the cluster (--workers).")
+                lines.append(
+                    f"  That exceeds this machine's RAM ({_gb(ram_mb)}): {e} trials do not fit in memory "
+                    "here and need the cluster (--workers)."
+                )
             else:
                 lines.append(f"  That fits in this machine's RAM ({_gb(ram_mb)}), if the growth stays linear.")
         else:
-            worker = "" if fw["per_million"] is None else (
-                f"; largest worker {fw['per_million']:+,.0f} MB per 10^6 trials -> {_gb(fw['linear'])}")
-            lines.append(f"  peak memory, main process {fm['per_million']:+,.0f} MB per 10^6 trials -> "
-                         f"{_gb(fm['linear'])} for {e} trials{worker} "
-                         f"(linear, from the two largest sizes; this machine: {_gb(ram_mb)}).")
+            worker = (
+                ""
+                if fw["per_million"] is None
+                else (f"; largest worker {fw['per_million']:+,.0f} MB per 10^6 trials -> {_gb(fw['linear'])}")
+            )
+            lines.append(
+                f"  peak memory, main process {fm['per_million']:+,.0f} MB per 10^6 trials -> "
+                f"{_gb(fm['linear'])} for {e} trials{worker} "
+                f"(linear, from the two largest sizes; this machine: {_gb(ram_mb)})."
+            )
             if fw["linear"] is not None and fm["linear"] + workers * fw["linear"] > ram_mb:
-                lines.append(f"  Main process and {workers} workers together would exceed this machine's RAM at {e} "
-                             "trials, if that growth holds.")
+                lines.append(
+                    f"  Main process and {workers} workers together would exceed this machine's RAM at {e} "
+                    "trials, if that growth holds."
+                )
     return lines, fits
 
 
@@ -364,29 +424,51 @@ def _git() -> dict:
             return subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True, check=True).stdout.strip()
         except (OSError, subprocess.CalledProcessError):
             return "?"
-    return {"commit": git("rev-parse", "--short", "HEAD"), "skilllib_modified": bool(git("status", "--porcelain",
-                                                                                          "skilllib"))}
+
+    return {
+        "commit": git("rev-parse", "--short", "HEAD"),
+        "skilllib_modified": bool(git("status", "--porcelain", "skilllib")),
+    }
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--sizes", type=int, nargs="+", default=list(DEFAULT_SIZES), metavar="COPIES",
-                    help="corpus sizes in copies of the 1,500-trial cohort (default: 1 10 100 300 667)")
+    ap.add_argument(
+        "--sizes",
+        type=int,
+        nargs="+",
+        default=list(DEFAULT_SIZES),
+        metavar="COPIES",
+        help="corpus sizes in copies of the 1,500-trial cohort (default: 1 10 100 300 667)",
+    )
     ap.add_argument("--mode", choices=["inmemory", "dask", "both"], default="both")
-    ap.add_argument("--input", nargs="+", choices=["csv", "parquet"], default=["csv"], dest="inputs",
-                    help="input of the in-memory runs: one CSV and/or a folder of Parquet files (default csv); "
-                         "Dask reads Parquet")
+    ap.add_argument(
+        "--input",
+        nargs="+",
+        choices=["csv", "parquet"],
+        default=["csv"],
+        dest="inputs",
+        help="input of the in-memory runs: one CSV and/or a folder of Parquet files (default csv); Dask reads Parquet",
+    )
     ap.add_argument("--workers", type=int, default=2, help="Dask workers (default 2)")
     ap.add_argument("--repeats", type=int, default=1, help="runs per size (the median is reported)")
     ap.add_argument("--per-file", type=int, default=10, help="copies per Parquet file (default 10: 15,000 trials)")
     ap.add_argument("--timeout", type=float, default=None, metavar="S", help="kill a run after S seconds")
-    ap.add_argument("--bench-dir", type=Path, default=BENCH_DIR,
-                    help="corpora (reused when present) and the runs' output folders (default _build/bench)")
+    ap.add_argument(
+        "--bench-dir",
+        type=Path,
+        default=BENCH_DIR,
+        help="corpora (reused when present) and the runs' output folders (default _build/bench)",
+    )
     ap.add_argument("--out-md", type=Path, help="append the markdown table and the projection to this file")
     ap.add_argument("--json", type=Path, help="write the raw measurements, the fits and the machine here")
-    ap.add_argument("--refit", type=Path, metavar="JSON",
-                    help="run nothing: recompute the fits and projections of the measurements stored in JSON "
-                         "(after a change of the fitting) and write them back into it")
+    ap.add_argument(
+        "--refit",
+        type=Path,
+        metavar="JSON",
+        help="run nothing: recompute the fits and projections of the measurements stored in JSON "
+        "(after a change of the fitting) and write them back into it",
+    )
     args = ap.parse_args(argv)
     if args.refit:
         stored = json.loads(args.refit.read_text())
@@ -395,11 +477,18 @@ def main(argv: Sequence[str] | None = None) -> int:
         print("\n".join([markdown_table(stored["rows"]), "", *lines]))
         return 0
 
-    series = ([("inmemory", kind) for kind in args.inputs] if args.mode in ("inmemory", "both") else []) + \
-             ([("dask", "parquet")] if args.mode in ("dask", "both") else [])
+    series = ([("inmemory", kind) for kind in args.inputs] if args.mode in ("inmemory", "both") else []) + (
+        [("dask", "parquet")] if args.mode in ("dask", "both") else []
+    )
     ram_mb = psutil.virtual_memory().total / MB
-    machine = {"cpus": os.cpu_count(), "ram_mb": ram_mb, "python": platform.python_version(),
-               "platform": platform.platform(), "OMP_NUM_THREADS": os.environ.get("OMP_NUM_THREADS"), **_git()}
+    machine = {
+        "cpus": os.cpu_count(),
+        "ram_mb": ram_mb,
+        "python": platform.python_version(),
+        "platform": platform.platform(),
+        "OMP_NUM_THREADS": os.environ.get("OMP_NUM_THREADS"),
+        **_git(),
+    }
     stopped: dict[tuple, str] = {}  # series ended by an option the command line does not know
     records: list[dict] = []
     runs = len(args.sizes) * len(series) * args.repeats
@@ -413,39 +502,57 @@ def main(argv: Sequence[str] | None = None) -> int:
             t0 = time.perf_counter()
             data, made = ensure_corpus(copies, kind, args.bench_dir, args.per_file)
             if made:
-                print(f"generated {data.relative_to(ROOT) if data.is_relative_to(ROOT) else data} "
-                      f"({n:,} trials) in {time.perf_counter() - t0:.0f} s", file=sys.stderr)
+                print(
+                    f"generated {data.relative_to(ROOT) if data.is_relative_to(ROOT) else data} "
+                    f"({n:,} trials) in {time.perf_counter() - t0:.0f} s",
+                    file=sys.stderr,
+                )
             for rep in range(args.repeats):
                 i += 1
                 out = args.bench_dir / "runs" / f"{mode}-{kind}-c{copies}"
-                r = measure(data, out, mode=mode, workers=args.workers, input_kind=kind, n_trials=n,
-                            timeout_s=args.timeout)
+                r = measure(
+                    data, out, mode=mode, workers=args.workers, input_kind=kind, n_trials=n, timeout_s=args.timeout
+                )
                 r["copies"] = copies
                 records.append(r)
                 worker = "" if r["peak_worker_mb"] is None else f", largest worker {r['peak_worker_mb']:,.0f} MB"
-                print(f"[{i}/{runs}] {n:,} trials, {kind}, {_mode_label(mode, r['workers'])}: exit {r['exit_code']}, "
-                      f"{r['wall_s']:.1f} s, main {r['peak_main_mb']:,.0f} MB{worker}", file=sys.stderr)
+                print(
+                    f"[{i}/{runs}] {n:,} trials, {kind}, {_mode_label(mode, r['workers'])}: exit {r['exit_code']}, "
+                    f"{r['wall_s']:.1f} s, main {r['peak_main_mb']:,.0f} MB{worker}",
+                    file=sys.stderr,
+                )
                 if r["exit_code"] != 0:
-                    print(f"    FAILED (exit {r['exit_code']}{', timed out' if r['timed_out'] else ''}): "
-                          f"{r['stderr_tail'] or '(no stderr)'}   [log: {out}.stderr.txt]", file=sys.stderr)
+                    print(
+                        f"    FAILED (exit {r['exit_code']}{', timed out' if r['timed_out'] else ''}): "
+                        f"{r['stderr_tail'] or '(no stderr)'}   [log: {out}.stderr.txt]",
+                        file=sys.stderr,
+                    )
                 elif r["trials_read"] not in (None, n):
                     print(f"    note: the run read {r['trials_read']:,} trials, not {n:,}", file=sys.stderr)
                 if r["unknown_option"]:
                     stopped[(mode, kind)] = r["unknown_option"]
-                    print(f"    the command line does not know {r['unknown_option']!r} yet: skipping the other "
-                          f"{_mode_label(mode, args.workers)} runs", file=sys.stderr)
+                    print(
+                        f"    the command line does not know {r['unknown_option']!r} yet: skipping the other "
+                        f"{_mode_label(mode, args.workers)} runs",
+                        file=sys.stderr,
+                    )
                     i += args.repeats - rep - 1  # this size's other repeats are skipped too
                     break
 
     rows = summarize(records)
     table = markdown_table(rows)
     lines, fits = projections(rows, ram_mb)
-    when = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    head = (f"Pipeline without figures, {when}, skilllib {machine['commit']}"
-            f"{' + local changes' if machine['skilllib_modified'] else ''}; {machine['cpus']} CPUs, "
-            f"{_gb(ram_mb)} RAM; peak RSS polled every 50 ms; median of {args.repeats} run(s).")
-    notes = [f"- {_mode_label(m, args.workers)}, {k}: not run beyond the first size: the command line does not "
-             f"know {opt!r} yet (exit 2)." for (m, k), opt in stopped.items()]
+    when = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
+    head = (
+        f"Pipeline without figures, {when}, skilllib {machine['commit']}"
+        f"{' + local changes' if machine['skilllib_modified'] else ''}; {machine['cpus']} CPUs, "
+        f"{_gb(ram_mb)} RAM; peak RSS polled every 50 ms; median of {args.repeats} run(s)."
+    )
+    notes = [
+        f"- {_mode_label(m, args.workers)}, {k}: not run beyond the first size: the command line does not "
+        f"know {opt!r} yet (exit 2)."
+        for (m, k), opt in stopped.items()
+    ]
     report = "\n".join([head, "", table, "", *lines, *notes])
     print(report)
     if args.out_md:
@@ -454,10 +561,20 @@ def main(argv: Sequence[str] | None = None) -> int:
             f.write(report + "\n\n")
     if args.json:
         args.json.parent.mkdir(parents=True, exist_ok=True)
-        args.json.write_text(json.dumps({"when": when, "machine": machine, "args": {k: str(v) if isinstance(v, Path)
-                                         else v for k, v in vars(args).items()}, "runs": records, "rows": rows,
-                                         "fits": fits, "stopped": {f"{m}/{k}": o for (m, k), o in stopped.items()}},
-                                        indent=1))
+        args.json.write_text(
+            json.dumps(
+                {
+                    "when": when,
+                    "machine": machine,
+                    "args": {k: str(v) if isinstance(v, Path) else v for k, v in vars(args).items()},
+                    "runs": records,
+                    "rows": rows,
+                    "fits": fits,
+                    "stopped": {f"{m}/{k}": o for (m, k), o in stopped.items()},
+                },
+                indent=1,
+            )
+        )
     return 0 if all(r["exit_code"] == 0 for r in records) else 1
 
 

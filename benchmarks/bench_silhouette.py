@@ -14,6 +14,7 @@ Synthetic data, seeded: 10 Gaussian blobs with centres uniform in PV 0.2-1.5 m/s
 SD 0.1 m/s and 0.15 (they overlap, like the features). Everything runs on one core (BLAS/OpenMP threads
 pinned to 1). Not a test: nothing here is timed by pytest.
 """
+
 from __future__ import annotations
 
 import os
@@ -30,8 +31,8 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 from sklearn.metrics import silhouette_samples  # noqa: E402
 
-from skilllib.prototypes import _silhouette as sil
 from skilllib.prototypes import SilhouetteSweep, feature_frame, silhouette_sweep
+from skilllib.prototypes import _silhouette as sil
 
 SEED = 20201
 N_BLOBS = 10
@@ -84,8 +85,10 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--n-init", type=int, default=10, help="K-means restarts (the book: 10)")
     ap.add_argument("--seed", type=int, default=SEED, help="seed of the synthetic data")
     a = ap.parse_args(argv)
-    print(f"exact up to {sil.SILHOUETTE_EXACT_MAX} points; above: {sil.SILHOUETTE_REPEATS} subsamples of "
-          f"{sil.SILHOUETTE_SAMPLE}; k = 2..{a.k_max}, n_init = {a.n_init}, one thread\n")
+    print(
+        f"exact up to {sil.SILHOUETTE_EXACT_MAX} points; above: {sil.SILHOUETTE_REPEATS} subsamples of "
+        f"{sil.SILHOUETTE_SAMPLE}; k = 2..{a.k_max}, n_init = {a.n_init}, one thread\n"
+    )
     print("| n | method | sweep CPU s | of which silhouettes s | wall s |")
     print("|---:|---|---:|---:|---:|")
     sweeps = {}
@@ -93,8 +96,11 @@ def main(argv: list[str] | None = None) -> None:
         sw, t = timed_sweep(features(n, a.seed), a.k_max, a.n_init)
         sweeps[n] = sw
         if n in a.n:
-            print(f"| {n:,} | {sw.estimate_dict()['method']} | {t['cpu']:.2f} | {t['silhouette']:.2f} | "
-                  f"{t['wall']:.2f} |", flush=True)
+            print(
+                f"| {n:,} | {sw.estimate_dict()['method']} | {t['cpu']:.2f} | {t['silhouette']:.2f} | "
+                f"{t['wall']:.2f} |",
+                flush=True,
+            )
     if not a.compare_exact:
         return
     sw = sweeps[a.compare_exact]
@@ -111,10 +117,14 @@ def main(argv: list[str] | None = None) -> None:
         p = est["per_k"][str(k)]
         d = p["mean"] - e
         diffs.append(d)
-        print(f"| {k} | {e:.4f} | {p['mean']:.4f} | {d:+.4f} | {p['sd']:.4f} | {d / p['sd']:+.2f} | "
-              f"{d / (p['sd'] / np.sqrt(est['repeats'])):+.2f} |")
-    print(f"\nlargest |difference| {max(map(abs, diffs)):.4f}, mean difference {np.mean(diffs):+.4f}; "
-          f"best k exact {max(exact, key=exact.get)}, estimate {int(sw.ks[np.argmax(sw.scores)])}")
+        print(
+            f"| {k} | {e:.4f} | {p['mean']:.4f} | {d:+.4f} | {p['sd']:.4f} | {d / p['sd']:+.2f} | "
+            f"{d / (p['sd'] / np.sqrt(est['repeats'])):+.2f} |"
+        )
+    print(
+        f"\nlargest |difference| {max(map(abs, diffs)):.4f}, mean difference {np.mean(diffs):+.4f}; "
+        f"best k exact {max(exact, key=exact.get)}, estimate {int(sw.ks[np.argmax(sw.scores)])}"
+    )
 
 
 if __name__ == "__main__":

@@ -12,6 +12,7 @@ Options: --repeats R (default 11), --max-n N (default 1000000; the scaling run g
    trial, the resident memory before the call (the input included) and the peak of the process (VmHWM).
 Everything runs on one core (BLAS threads pinned to 1). Not a test: nothing here is timed by pytest.
 """
+
 from __future__ import annotations
 
 import os
@@ -47,7 +48,7 @@ def touch_trials(n: int, seed: int = 0, chunk: int = 20_000) -> list[np.ndarray]
         D1 = rng.uniform(0.1, 0.3, m)  # m
         t2, T2 = T1 * rng.uniform(0.3, 0.6, m), T1 * rng.uniform(0.3, 0.5, m)
         D2 = D1 * rng.uniform(0.1, 0.4, m) * (rng.random(m) < 0.5)
-        rep = lambda a: np.repeat(a, lengths)  # noqa: E731
+        rep = lambda a: np.repeat(a, lengths)  # noqa: E731, B023  (used at once)
         v = minimum_jerk_speed(t, 0.0, rep(T1), rep(D1)) + minimum_jerk_speed(t, rep(t2), rep(T2), rep(D2))
         v = np.abs(v + rng.normal(0.0, 0.005, v.size))
         out += np.split(v, offsets[1:])
@@ -68,8 +69,12 @@ def compare(authors, ours, trials: list[np.ndarray], repeats: int) -> dict:
         t_new.append(t2 - t1)
     diff = float(np.max(np.abs(new - ref)))
     assert diff < 1e-9, f"{ours.__name__} differs from the authors' code by {diff}"
-    return {"ref": float(np.median(t_ref)), "new": float(np.median(t_new)), "diff": diff,
-            "range": (float(ref.min()), float(ref.max()))}
+    return {
+        "ref": float(np.median(t_ref)),
+        "new": float(np.median(t_new)),
+        "diff": diff,
+        "range": (float(ref.min()), float(ref.max())),
+    }
 
 
 def _memory_mb() -> dict[str, float]:
@@ -104,23 +109,26 @@ def main() -> None:
     trials = touch_trials(1500)
     print(f"1,500 trials of 30-90 samples at {FS:g} Hz, median CPU time of {args.repeats} repeats, one core")
     print(f"{'':36s}{'time (ms)':>10s}{'per trial (us)':>16s}{'speed-up':>10s}{'max |diff|':>12s}")
-    for name, authors, ours in (("sparc", lambda v, fs: sparc(v, fs, **SPARC_PARAMS)[0], sparc_many),
-                                ("ldlj", log_dimensionless_jerk, ldlj_many)):
+    for name, authors, ours in (
+        ("sparc", lambda v, fs: sparc(v, fs, **SPARC_PARAMS)[0], sparc_many),
+        ("ldlj", log_dimensionless_jerk, ldlj_many),
+    ):
         c = compare(authors, ours, trials, args.repeats)
         print(f"{'monalysa ' + name + ', trial by trial':36s}{c['ref'] * 1e3:10.1f}{c['ref'] / 1500 * 1e6:16.1f}")
-        print(f"{'skilllib.' + ours.__name__:36s}{c['new'] * 1e3:10.2f}{c['new'] / 1500 * 1e6:16.2f}"
-              f"{c['ref'] / c['new']:9.0f}x{c['diff']:12.1e}")
+        print(
+            f"{'skilllib.' + ours.__name__:36s}{c['new'] * 1e3:10.2f}{c['new'] / 1500 * 1e6:16.2f}"
+            f"{c['ref'] / c['new']:9.0f}x{c['diff']:12.1e}"
+        )
 
     print("\nscaling of sparc_many (each size in a fresh process; CPU time; RSS includes the input)")
-    print(f"{'trials':>10s}{'time (s)':>10s}{'per trial (us)':>16s}{'RSS before (MB)':>17s}"
-          f"{'peak RSS (MB)':>15s}")
+    print(f"{'trials':>10s}{'time (s)':>10s}{'per trial (us)':>16s}{'RSS before (MB)':>17s}{'peak RSS (MB)':>15s}")
     n = 1000
     while n <= args.max_n:
-        out = subprocess.run([sys.executable, __file__, "--scale-point", str(n)], check=True,
-                             capture_output=True, text=True).stdout
+        out = subprocess.run(
+            [sys.executable, __file__, "--scale-point", str(n)], check=True, capture_output=True, text=True
+        ).stdout
         r = json.loads(out)
-        print(f"{n:10,d}{r['seconds']:10.2f}{r['seconds'] / n * 1e6:16.2f}{r['before_mb']:17.0f}"
-              f"{r['peak_mb']:15.0f}")
+        print(f"{n:10,d}{r['seconds']:10.2f}{r['seconds'] / n * 1e6:16.2f}{r['before_mb']:17.0f}{r['peak_mb']:15.0f}")
         assert r["peak_mb"] < 2048, f"peak memory {r['peak_mb']:.0f} MB at {n} trials"
         n *= 10
 

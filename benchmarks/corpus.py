@@ -14,6 +14,7 @@ Copy 0 is the cohort unchanged. Synthetic data, seeded: the same arguments give 
     .venv/bin/python benchmarks/corpus.py --copies 100 --out _build/bench/corpus-150k.csv
     .venv/bin/python benchmarks/corpus.py --copies 100 --parquet --per-file 10 --out _build/bench/corpus-150k
 """
+
 from __future__ import annotations
 
 import argparse
@@ -25,8 +26,8 @@ import pyarrow as pa
 import pyarrow.csv as pacsv
 import pyarrow.parquet as pq
 
-from skilllib.recordings import read_recordings
 from skilllib.datasets import cohort_path
+from skilllib.recordings import read_recordings
 
 SCALE_JITTER = 0.05  #: +- relative amplitude change per trial
 SHIFT_M = 0.02  #: m, +- shift per axis per trial
@@ -41,10 +42,14 @@ def _cohort() -> dict[str, np.ndarray]:
     order = np.argsort(first)  # trial numbers in order of appearance
     rank = np.empty_like(order)
     rank[order] = np.arange(len(order))
-    return {"participant": f["participant"].astype(str).to_numpy(dtype=object),
-            "trial": f["trial"].astype(str).to_numpy(dtype=object),
-            "t": f["t"].to_numpy(), "pos": f[["x", "y", "z"]].to_numpy(),
-            "contact": f["contact"].to_numpy().astype(np.int8), "trial_of_row": rank[trial_of_row]}
+    return {
+        "participant": f["participant"].astype(str).to_numpy(dtype=object),
+        "trial": f["trial"].astype(str).to_numpy(dtype=object),
+        "t": f["t"].to_numpy(),
+        "pos": f[["x", "y", "z"]].to_numpy(),
+        "contact": f["contact"].to_numpy().astype(np.int8),
+        "trial_of_row": rank[trial_of_row],
+    }
 
 
 def copies(n_copies: int, seed: int = SEED) -> Iterator[pa.Table]:
@@ -64,9 +69,17 @@ def copies(n_copies: int, seed: int = SEED) -> Iterator[pa.Table]:
         s = scale[base["trial_of_row"]][:, None]
         pos = np.round(first_pos + s * (base["pos"] - first_pos) + shift[base["trial_of_row"]], 5) + 0.0
         part = base["participant"] if c == 0 else np.char.add(f"c{c:05d}-", base["participant"].astype(str))
-        yield pa.table({"participant": pa.array(part, pa.string()), "trial": pa.array(base["trial"], pa.string()),
-                        "t": base["t"], "x": pos[:, 0], "y": pos[:, 1], "z": pos[:, 2],
-                        "contact": base["contact"]})
+        yield pa.table(
+            {
+                "participant": pa.array(part, pa.string()),
+                "trial": pa.array(base["trial"], pa.string()),
+                "t": base["t"],
+                "x": pos[:, 0],
+                "y": pos[:, 1],
+                "z": pos[:, 2],
+                "contact": base["contact"],
+            }
+        )
 
 
 def write_csv(path: Path, n_copies: int, seed: int = SEED) -> Path:
@@ -94,8 +107,17 @@ def write_parquet(folder: Path, n_copies: int, per_file: int, seed: int = SEED) 
 
 
 def copies_schema() -> pa.Schema:
-    return pa.schema([("participant", pa.string()), ("trial", pa.string()), ("t", pa.float64()),
-                      ("x", pa.float64()), ("y", pa.float64()), ("z", pa.float64()), ("contact", pa.int8())])
+    return pa.schema(
+        [
+            ("participant", pa.string()),
+            ("trial", pa.string()),
+            ("t", pa.float64()),
+            ("x", pa.float64()),
+            ("y", pa.float64()),
+            ("z", pa.float64()),
+            ("contact", pa.int8()),
+        ]
+    )
 
 
 def main() -> None:

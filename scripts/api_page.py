@@ -6,7 +6,8 @@
 What is listed: every public module of the package (no leading underscore, not ``__main__``): its
 sub-packages, each the public face of its private modules, and in each its public functions and classes
 (``__all__`` when the module has one, otherwise the public names it defines; a name defined in a private
-module ``skilllib.robot._velocity`` is documented in ``skilllib.robot``), with the public methods and properties of each class. Every entry has a label
+module ``skilllib.robot._velocity`` is documented in ``skilllib.robot``), with the public methods and
+properties of each class. Every entry has a label
 ``<module>.<name>`` (e.g. ``skilllib.smoothness.sparc``) that chapters cross-reference with
 ``[`skilllib.sparc`](#skilllib.smoothness.sparc)``, its signature (``inspect``), the units its docstring
 states, and the docstring itself.
@@ -18,6 +19,7 @@ so the theme renders, searches and previews it like any page. The Python roles (
 A docstring that docutils reports a problem with (level WARNING or above) stops the page with the object
 and the line named: the docstrings render without markup errors or not at all.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -50,7 +52,7 @@ class Entry:
     name: str
     kind: str  # "function", "class", "method", "property"
     obj: object
-    children: list["Entry"] = field(default_factory=list)
+    children: list[Entry] = field(default_factory=list)
 
 
 @dataclass
@@ -62,6 +64,7 @@ class ModuleDoc:
 
 
 # ------------------------------------------------------------------------------------ what is public --
+
 
 def public_modules(package: str) -> list[str]:
     pkg = importlib.import_module(package)
@@ -134,6 +137,7 @@ def _class_members(cls_entry: Entry) -> list[Entry]:
 
 # ------------------------------------------------------------------------------------ signatures --
 
+
 def _annotation(ann) -> str:
     if ann is inspect.Parameter.empty:
         return ""
@@ -164,9 +168,13 @@ def signature(entry: Entry) -> str | None:
             text += f" = {p.default!r}" if ann else f"={p.default!r}"
         params.append(text)
     if any(p.kind is p.KEYWORD_ONLY for p in sig.parameters.values()):
-        first_kw = next(i for i, p in enumerate([q for q in sig.parameters.values()
-                                                  if not (entry.kind == "method" and q.name in ("self", "cls"))])
-                        if p.kind is p.KEYWORD_ONLY)
+        first_kw = next(
+            i
+            for i, p in enumerate(
+                [q for q in sig.parameters.values() if not (entry.kind == "method" and q.name in ("self", "cls"))]
+            )
+            if p.kind is p.KEYWORD_ONLY
+        )
         if not any(p.kind is p.VAR_POSITIONAL for p in sig.parameters.values()):
             params.insert(first_kw, "*")
     ret = _annotation(sig.return_annotation)
@@ -180,6 +188,7 @@ def signature(entry: Entry) -> str | None:
 
 
 # ------------------------------------------------------------------------------------ docstrings --
+
 
 class _Translator(html5_polyglot.HTMLTranslator):
     """HTML that mystmd maps to MyST nodes: ``<code>`` for literals, plain ``<pre>`` blocks."""
@@ -207,6 +216,7 @@ class Renderer:
         self.module = ""
         self.owner = ""  # the class whose members are being rendered
         self.errors: list[str] = []  # every docstring problem, reported together
+
         def role(*args, **kwargs):
             return self._role(*args, **kwargs)
 
@@ -215,8 +225,12 @@ class Renderer:
 
     def resolve(self, target: str) -> str | None:
         target = target.lstrip("~.")
-        for cand in (target, f"{self.owner}.{target}" if self.owner else None, f"{self.module}.{target}",
-                     f"{self.module.rsplit('.', 1)[0]}.{target}"):
+        for cand in (
+            target,
+            f"{self.owner}.{target}" if self.owner else None,
+            f"{self.module}.{target}",
+            f"{self.module.rsplit('.', 1)[0]}.{target}",
+        ):
             if cand and cand in self.labels:
                 return cand
         return None
@@ -238,10 +252,19 @@ class Renderer:
             def write(self, s):
                 messages.append(s.strip())
 
-        tree = publish_doctree(doc, settings_overrides={
-            "report_level": 2, "halt_level": 5, "warning_stream": Stream(), "doctitle_xform": False,
-            "file_insertion_enabled": False, "raw_enabled": False, "syntax_highlight": "none",
-            "input_encoding": "unicode"})
+        tree = publish_doctree(
+            doc,
+            settings_overrides={
+                "report_level": 2,
+                "halt_level": 5,
+                "warning_stream": Stream(),
+                "doctitle_xform": False,
+                "file_insertion_enabled": False,
+                "raw_enabled": False,
+                "syntax_highlight": "none",
+                "input_encoding": "unicode",
+            },
+        )
         problems = [m for m in messages if m]
         if problems:
             lines = "; ".join(re.sub(r"^<string>:(\d+):", r"docstring line \1:", p).splitlines()[0] for p in problems)
@@ -250,8 +273,11 @@ class Renderer:
 
     def html(self, tree) -> str:
         writer = _Writer()
-        publish_from_doctree(tree, writer=writer, settings_overrides={
-            "initial_header_level": 4, "output_encoding": "unicode", "doctitle_xform": False})
+        publish_from_doctree(
+            tree,
+            writer=writer,
+            settings_overrides={"initial_header_level": 4, "output_encoding": "unicode", "doctitle_xform": False},
+        )
         return _no_blank_lines(writer.parts["body"].strip())
 
 
@@ -284,18 +310,23 @@ def units_of(text: str) -> list[str]:
 
 # ------------------------------------------------------------------------------------ the page --
 
+
 def _docstring(obj) -> str:
     return inspect.getdoc(obj) or ""
 
 
 def render_page(package: str = "skilllib") -> str:
     docs = collect(package)
-    labels = {m.name for m in docs} | {e.label for m in docs for e in m.entries} | \
-             {c.label for m in docs for e in m.entries for c in e.children}
+    labels = (
+        {m.name for m in docs}
+        | {e.label for m in docs for e in m.entries}
+        | {c.label for m in docs for e in m.entries for c in e.children}
+    )
     r = Renderer(labels)
     version = getattr(importlib.import_module(package), "__version__", None)
     try:
         from importlib.metadata import version as dist_version
+
         version = version or dist_version(package)
     except Exception:
         pass
@@ -304,7 +335,8 @@ def render_page(package: str = "skilllib") -> str:
     out = [
         "---",
         "title: API reference",
-        f"subtitle: Every public function and class of {package}{f' {version}' if version else ''}, from its docstrings",
+        f"subtitle: Every public function and class of {package}{f' {version}' if version else ''}, "
+        "from its docstrings",
         "---",
         "",
         f"This page is generated at build time from the docstrings of `{package}` (`scripts/api_page.py`): "
@@ -337,7 +369,7 @@ def _entry(r: Renderer, e: Entry, level: int) -> list[str]:
     sig = signature(e)
     lines = [f"({e.label})=", f"{'#' * level} `{e.name}`", ""]
     tag = {"class": "class", "property": "property", "method": "method"}.get(e.kind, "function")
-    lines += [f"<div class=\"api-kind\">{tag} <code>{e.label}</code></div>", ""]
+    lines += [f'<div class="api-kind">{tag} <code>{e.label}</code></div>', ""]
     if sig:
         lines += ["```python", sig, "```", ""]
     unit_text = ", ".join(f"`{u}`" for u in units) if units else "*none stated*"
@@ -345,7 +377,7 @@ def _entry(r: Renderer, e: Entry, level: int) -> list[str]:
     if tree is not None:
         if e.kind == "class":
             r.owner = e.label
-        lines += [f"<div class=\"docstring\">\n{r.html(tree)}\n</div>", ""]
+        lines += [f'<div class="docstring">\n{r.html(tree)}\n</div>', ""]
     else:
         lines += ["*No docstring.*", ""]
     for child in e.children:
@@ -356,7 +388,7 @@ def _entry(r: Renderer, e: Entry, level: int) -> list[str]:
 
 
 def _html_block(r: Renderer, doc: str, where: str, cls: str) -> str:
-    return f"<div class=\"docstring {cls}\">\n{r.html(r.doctree(doc, where))}\n</div>"
+    return f'<div class="docstring {cls}">\n{r.html(r.doctree(doc, where))}\n</div>'
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -22,6 +22,7 @@ Steps:
 3. Copy the result to _build/html and check that every toc entry has its page.
 A failing cell or page stops the build with a non-zero exit and a message naming it.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -43,8 +44,25 @@ import yaml
 ROOT = Path(__file__).resolve().parents[1]
 # Never staged: tooling, caches and the build itself. Everything else is, so that pages can refer to
 # images, bibliographies and data files next to them.
-SKIP_DIRS = {".git", ".venv", "_build", "node_modules", "theme", "tests", "__pycache__", ".pytest_cache",
-             ".hypothesis", ".ipynb_checkpoints", ".benchmarks", ".ci", "out", "results", "skilllib.egg-info", "_executed", "mutants"}
+SKIP_DIRS = {
+    ".git",
+    ".venv",
+    "_build",
+    "node_modules",
+    "theme",
+    "tests",
+    "__pycache__",
+    ".pytest_cache",
+    ".hypothesis",
+    ".ipynb_checkpoints",
+    ".benchmarks",
+    ".ci",
+    "out",
+    "results",
+    "skilllib.egg-info",
+    "_executed",
+    "mutants",
+}
 ANSI = re.compile(r"\x1b\[[0-9;?]*[A-Za-z]")
 # What an executed chapter's outputs depend on besides its code cells (paths relative to the project;
 # missing ones are skipped). A change to any of them executes the chapters again.
@@ -53,8 +71,10 @@ CACHE_INPUTS = ("skilllib", "data", "images", "environment.txt", "pyproject.toml
 # a subprocess a chapter starts (python -m skilllib run) does not print `Figure(650x600)` for each figure.
 KERNEL_ARGS = ["--matplotlib=inline", "--InlineBackend.figure_formats=retina"]
 # myst only warns about these; the build stops on them.
-FATAL_MYST = re.compile(r"Could not link citation|Error reading file|No target for internal reference|"
-                        r"Duplicate identifier")
+FATAL_MYST = re.compile(
+    r"Could not link citation|Error reading file|No target for internal reference|"
+    r"Duplicate identifier"
+)
 # Toc entries written at build time: file -> package whose API reference it is (scripts/api_page.py).
 GENERATED_PAGES = {"api.md": "skilllib"}
 
@@ -117,7 +137,7 @@ def set_chapter_numbering(source: str, chapter: int) -> str:
     if "numbering" in meta:
         return source
     meta["numbering"] = {"enumerator": f"{chapter}.%s"}
-    body = source[m.end():] if m else source
+    body = source[m.end() :] if m else source
     return "---\n" + yaml.safe_dump(meta, sort_keys=False, allow_unicode=True) + "---\n" + body
 
 
@@ -146,8 +166,14 @@ def execute_notebook(src: Path, rel: str, timeout: int):
     tmp = Path(tempfile.mkdtemp(prefix="book-kernel-"))
     km = KernelManager(kernel_name="python3", transport="ipc", connection_file=str(tmp / "kernel.json"))
     # Retina PNGs: twice the pixels, shown at the figure's size (the theme reads the width metadata).
-    client = NotebookClient(nb, km=km, timeout=timeout, kernel_name="python3", extra_arguments=KERNEL_ARGS,
-                            resources={"metadata": {"path": str(src.parent)}})
+    client = NotebookClient(
+        nb,
+        km=km,
+        timeout=timeout,
+        kernel_name="python3",
+        extra_arguments=KERNEL_ARGS,
+        resources={"metadata": {"path": str(src.parent)}},
+    )
     try:
         run_cells(client, nb, rel, timeout)
     finally:  # the client does not stop a kernel it was given
@@ -212,6 +238,7 @@ def kernel_environment() -> None:
 
 
 # ------------------------------------------------------------------------------ the execution cache --
+
 
 def _file_digest(path: Path) -> str:
     h = hashlib.sha256()
@@ -291,10 +318,12 @@ def with_outputs_of(nb, ran):
 
 # ------------------------------------------------------------------------------ build information --
 
+
 def build_info(project: Path) -> dict[str, str]:
     """Version, commit and date for the footer: version from myst.yml `project: version`, or else
     pyproject.toml's `project.version`, or, when that is dynamic, the `__version__` of the package that
-    `tool.setuptools.dynamic.version.attr` names (read from its source, not imported); the commit (with "+ local changes" when the work tree differs from it); the date
+    `tool.setuptools.dynamic.version.attr` names (read from its source, not imported); the commit (with "+
+    local changes" when the work tree differs from it); the date
     (UTC, or SOURCE_DATE_EPOCH when set, for reproducible builds)."""
     version = "unversioned"
     try:
@@ -304,6 +333,7 @@ def build_info(project: Path) -> dict[str, str]:
         pass
     if version == "unversioned" and (project / "pyproject.toml").is_file():
         import tomllib
+
         try:
             meta = tomllib.loads((project / "pyproject.toml").read_text(encoding="utf-8"))
             version = str(meta["project"].get("version") or "") or version
@@ -319,23 +349,33 @@ def build_info(project: Path) -> dict[str, str]:
             pass
     commit = "not a git checkout"
     try:
-        rev = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=project, capture_output=True,
-                             text=True, timeout=30)
+        rev = subprocess.run(
+            ["git", "rev-parse", "--short=12", "HEAD"], cwd=project, capture_output=True, text=True, timeout=30
+        )
         if rev.returncode == 0:
             commit = rev.stdout.strip()
-            dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=project,
-                                   capture_output=True, text=True, timeout=30)
+            dirty = subprocess.run(
+                ["git", "status", "--porcelain", "--untracked-files=no"],
+                cwd=project,
+                capture_output=True,
+                text=True,
+                timeout=30,
+            )
             if dirty.returncode == 0 and dirty.stdout.strip():
                 commit += " + local changes"
     except (OSError, subprocess.TimeoutExpired):
         pass
     epoch = os.environ.get("SOURCE_DATE_EPOCH")
-    when = datetime.datetime.fromtimestamp(int(epoch), datetime.timezone.utc) if epoch and epoch.isdigit() \
-        else datetime.datetime.now(datetime.timezone.utc)
+    when = (
+        datetime.datetime.fromtimestamp(int(epoch), datetime.UTC)
+        if epoch and epoch.isdigit()
+        else datetime.datetime.now(datetime.UTC)
+    )
     return {"BOOK_VERSION": version, "BOOK_COMMIT": commit, "BOOK_BUILD_DATE": when.strftime("%Y-%m-%d %H:%M UTC")}
 
 
 # ------------------------------------------------------------------------------ generated pages --
+
 
 def generate_page(project: Path, rel: str, dst: Path, cache_dir: Path) -> None:
     """Write the generated page `rel` (GENERATED_PAGES) to dst, from the cache when its package's
@@ -347,12 +387,20 @@ def generate_page(project: Path, rel: str, dst: Path, cache_dir: Path) -> None:
     cached = cache_dir / f"{Path(rel).stem}-{h.hexdigest()[:24]}.md"
     if not cached.is_file():
         t0 = time.perf_counter()
-        proc = subprocess.run([sys.executable, str(generator), "--package", package, "--out", str(cached)],
-                              cwd=project, capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=600)
+        proc = subprocess.run(
+            [sys.executable, str(generator), "--package", package, "--out", str(cached)],
+            cwd=project,
+            capture_output=True,
+            text=True,
+            stdin=subprocess.DEVNULL,
+            timeout=600,
+        )
         if proc.returncode != 0:
             cached.unlink(missing_ok=True)
-            raise BuildError(f"{rel} (the API reference of {package}) could not be generated:\n"
-                             + (proc.stderr.strip() or proc.stdout.strip())[-3000:])
+            raise BuildError(
+                f"{rel} (the API reference of {package}) could not be generated:\n"
+                + (proc.stderr.strip() or proc.stdout.strip())[-3000:]
+            )
         for old in cache_dir.glob(f"{Path(rel).stem}-*.md"):
             if old != cached:
                 old.unlink()
@@ -375,8 +423,15 @@ def find_myst() -> str:
     raise BuildError("the myst command was not found (pip install mystmd in the venv)")
 
 
-def build(project: Path, build_dir: Path, execute: bool, timeout: int, chapter_numbers: bool,
-          executed: Path | None = None, use_cache: bool = True) -> Path:
+def build(
+    project: Path,
+    build_dir: Path,
+    execute: bool,
+    timeout: int,
+    chapter_numbers: bool,
+    executed: Path | None = None,
+    use_cache: bool = True,
+) -> Path:
     t_start = time.perf_counter()
     cfg, files = read_config(project)
     theme = (project / cfg["site"]["template"]).resolve()
@@ -441,8 +496,16 @@ def build(project: Path, build_dir: Path, execute: bool, timeout: int, chapter_n
     # 2. Render with myst and the offline theme. CI=1 and no stdin: myst never prompts.
     env = dict(os.environ, CI="1", PWD=str(staging), **build_info(project))
     env.pop("BASE_URL", None)
-    proc = subprocess.run([find_myst(), "build", "--html"], cwd=staging, env=env, stdin=subprocess.DEVNULL,
-                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=900)
+    proc = subprocess.run(
+        [find_myst(), "build", "--html"],
+        cwd=staging,
+        env=env,
+        stdin=subprocess.DEVNULL,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        timeout=900,
+    )
     myst_log = proc.stdout
     (build_dir / "myst-build.log").write_text(myst_log, encoding="utf-8")
     # Show myst's warnings, errors and summary; the whole log is in BUILD_DIR/myst-build.log.
@@ -454,9 +517,11 @@ def build(project: Path, build_dir: Path, execute: bool, timeout: int, chapter_n
         raise BuildError(f"myst build --html failed (exit {proc.returncode}); the messages above name the page")
     fatal = sorted({ln.strip() for ln in myst_log.splitlines() if FATAL_MYST.search(ln)})
     if fatal:
-        raise BuildError("myst reported problems the site must not have (a citation without its entry in the "
-                         "bibliography, an unreadable .bib, a cross-reference without target, a duplicate "
-                         "label):\n  " + "\n  ".join(fatal))
+        raise BuildError(
+            "myst reported problems the site must not have (a citation without its entry in the "
+            "bibliography, an unreadable .bib, a cross-reference without target, a duplicate "
+            "label):\n  " + "\n  ".join(fatal)
+        )
     t_myst = time.perf_counter()
 
     # 3. Copy the site out, then 4. check it.
@@ -468,8 +533,10 @@ def build(project: Path, build_dir: Path, execute: bool, timeout: int, chapter_n
     tmp.rename(out)
     check_site(out, files)
     t_end = time.perf_counter()
-    log(f"timings: stage+execute {t_exec - t_start:.1f} s, myst+render {t_myst - t_exec:.1f} s, "
-        f"copy+check {t_end - t_myst:.1f} s, total {t_end - t_start:.1f} s")
+    log(
+        f"timings: stage+execute {t_exec - t_start:.1f} s, myst+render {t_myst - t_exec:.1f} s, "
+        f"copy+check {t_end - t_myst:.1f} s, total {t_end - t_start:.1f} s"
+    )
     return out
 
 
@@ -499,16 +566,27 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--build-dir", type=Path, help="default: PROJECT/_build (the site goes to BUILD_DIR/html)")
     ap.add_argument("--no-execute", action="store_true", help="reuse the notebooks executed by the last build")
     ap.add_argument("--no-cache", action="store_true", help="execute every chapter, even those whose code is unchanged")
-    ap.add_argument("--executed", type=Path, metavar="DIR",
-                    help="take each chapter's outputs from DIR/<name>.ipynb, executed by another runner")
+    ap.add_argument(
+        "--executed",
+        type=Path,
+        metavar="DIR",
+        help="take each chapter's outputs from DIR/<name>.ipynb, executed by another runner",
+    )
     ap.add_argument("--timeout", type=int, default=600, help="seconds allowed per cell (default 600)")
     ap.add_argument("--no-chapter-numbers", action="store_true", help="number figures 1, 2, ... on every page")
     args = ap.parse_args(argv)
     project = args.project.resolve()
     build_dir = (args.build_dir or project / "_build").resolve()
     try:
-        out = build(project, build_dir, not args.no_execute, args.timeout, not args.no_chapter_numbers,
-                    args.executed.resolve() if args.executed else None, use_cache=not args.no_cache)
+        out = build(
+            project,
+            build_dir,
+            not args.no_execute,
+            args.timeout,
+            not args.no_chapter_numbers,
+            args.executed.resolve() if args.executed else None,
+            use_cache=not args.no_cache,
+        )
     except BuildError as err:
         print(f"build_site: ERROR: {err}", file=sys.stderr, flush=True)
         return 1

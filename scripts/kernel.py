@@ -8,6 +8,7 @@ with two settings: figures inline (--matplotlib=inline), and MPLBACKEND=Agg in i
 is what the processes a chapter starts inherit: with ipykernel's default, the inline backend, a
 `python -m skilllib run` from a chapter prints `Figure(650x600)` for every figure roboticstoolbox shows.
 """
+
 from __future__ import annotations
 
 import json

@@ -10,6 +10,7 @@ chapters find the data. jupyterlab-myst renders the chapters' MyST: cross-refere
 equations, admonitions. Saving a notebook updates its percent script too (Jupytext, jupytext.toml).
 Nothing is fetched from the network: JupyterLab's update check is off.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -23,8 +24,13 @@ FIRST_CHAPTER = "notebooks/01_sparc.ipynb"
 
 def lab_command(root: Path, notebook: str, extra: list[str]) -> list[str]:
     jupyter = Path(sys.executable).parent / "jupyter"
-    cmd = [str(jupyter), "lab", f"--ServerApp.root_dir={root}",
-           "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate", *extra]
+    cmd = [
+        str(jupyter),
+        "lab",
+        f"--ServerApp.root_dir={root}",
+        "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate",
+        *extra,
+    ]
     if hasattr(os, "getuid") and os.getuid() == 0:
         cmd.append("--allow-root")  # a container's root user; JupyterLab refuses root otherwise
     if notebook:  # opened at start (a URL relative to the root)
@@ -35,7 +41,9 @@ def lab_command(root: Path, notebook: str, extra: list[str]) -> list[str]:
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--root", type=Path, default=ROOT, help="folder JupyterLab serves (default: the repository)")
-    ap.add_argument("--open", default=FIRST_CHAPTER, help=f"notebook to open, relative to the root (default {FIRST_CHAPTER})")
+    ap.add_argument(
+        "--open", default=FIRST_CHAPTER, help=f"notebook to open, relative to the root (default {FIRST_CHAPTER})"
+    )
     ap.add_argument("extra", nargs="*", help="options for jupyter lab (after --)")
     args = ap.parse_args(argv)
     if args.open and not (args.root / args.open).is_file():

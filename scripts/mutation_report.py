@@ -19,6 +19,7 @@ whole module's, given with its 95 % Wilson score interval (binomial; the systema
 random one). Exits 1 when an entry of the equivalence list names a mutant that no longer exists or that a
 test kills (the list must stay true), 0 otherwise.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -41,8 +42,13 @@ Z95 = 1.959964  # two-sided 95 % normal quantile
 
 def mutmut_results(where: Path = ROOT) -> dict[str, str]:
     """Mutant name -> status, from ``mutmut results --all true`` in ``where`` (a checkout that ran mutmut)."""
-    out = subprocess.run([sys.executable, "-m", "mutmut", "results", "--all", "true"], cwd=where,
-                         capture_output=True, text=True, check=True).stdout
+    out = subprocess.run(
+        [sys.executable, "-m", "mutmut", "results", "--all", "true"],
+        cwd=where,
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
     return {m["name"]: m["status"] for m in map(LINE.match, out.splitlines()) if m}
 
 
@@ -62,8 +68,7 @@ def wilson(k: int, n: int, z: float = Z95) -> tuple[float, float]:
     return max(0.0, centre - half), min(1.0, centre + half)
 
 
-def table(results: dict[str, str], equivalent: dict[str, str],
-          population: dict[str, str] | None = None) -> list[str]:
+def table(results: dict[str, str], equivalent: dict[str, str], population: dict[str, str] | None = None) -> list[str]:
     """The Markdown table of README "Mutation testing", one row per module and one for all. ``mutants``
     counts the mutants of ``population`` (default: ``results``; all of mutmut's mutants when ``results``
     is a sample of them), ``checked`` those of ``results`` that were run."""
@@ -81,8 +86,10 @@ def table(results: dict[str, str], equivalent: dict[str, str],
             row["equivalent"] += 1
         else:
             row["not killed"] += 1
-    lines = ["| module | mutants | checked | killed | equivalent | not killed | score | 95 % interval |",
-             "|---|---|---|---|---|---|---|---|"]
+    lines = [
+        "| module | mutants | checked | killed | equivalent | not killed | score | 95 % interval |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
     total = collections.Counter()
     for module in [*sorted(rows), "all"]:
         r = total if module == "all" else rows[module]
@@ -93,19 +100,30 @@ def table(results: dict[str, str], equivalent: dict[str, str],
         low, high = wilson(r["killed"], n)
         interval = "(all checked)" if r["checked"] == r["mutants"] else f"{low:.0%} to {high:.0%}"
         label = "all" if module == "all" else f"`{module}`"
-        lines.append(f"| {label} | {r['mutants']} | {r['checked']} | {r['killed']} | {r['equivalent']} | "
-                     f"{r['not killed']} | {score} | {interval} |")
+        lines.append(
+            f"| {label} | {r['mutants']} | {r['checked']} | {r['killed']} | {r['equivalent']} | "
+            f"{r['not killed']} | {score} | {interval} |"
+        )
     return lines
 
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--survivors", action="store_true", help="list every checked mutant that is not killed")
-    ap.add_argument("--only", metavar="PATTERN",
-                    help="count only the mutants whose name matches this fnmatch pattern (the sample of "
-                         "`make mutation-sample`: 'skilllib.*__mutmut_*7')")
-    ap.add_argument("--from", dest="dirs", action="append", type=Path, metavar="DIR",
-                    help="read the results of mutmut runs in these checkouts (default: this repository)")
+    ap.add_argument(
+        "--only",
+        metavar="PATTERN",
+        help="count only the mutants whose name matches this fnmatch pattern (the sample of "
+        "`make mutation-sample`: 'skilllib.*__mutmut_*7')",
+    )
+    ap.add_argument(
+        "--from",
+        dest="dirs",
+        action="append",
+        type=Path,
+        metavar="DIR",
+        help="read the results of mutmut runs in these checkouts (default: this repository)",
+    )
     args = ap.parse_args()
     results: dict[str, str] = {}
     for where in args.dirs or [ROOT]:
@@ -118,7 +136,9 @@ def main() -> int:
     if not results:
         print("no mutmut results: run `make mutation` or `make mutation-sample` first", file=sys.stderr)
         return 1
-    equivalent = tomllib.loads(EQUIVALENT.read_text(encoding="utf-8")).get("equivalent", {}) if EQUIVALENT.exists() else {}
+    equivalent = (
+        tomllib.loads(EQUIVALENT.read_text(encoding="utf-8")).get("equivalent", {}) if EQUIVALENT.exists() else {}
+    )
     print("\n".join(table(results, equivalent, everything)))
     if args.survivors:
         print("\nnot killed:")
@@ -127,8 +147,9 @@ def main() -> int:
                 print(f"  {name}: {status}")
     stale = [n for n in equivalent if n not in everything or everything[n] in KILLED]
     if stale:
-        print(f"\nthe equivalence list names mutants that are gone or killed: {', '.join(sorted(stale))}",
-              file=sys.stderr)
+        print(
+            f"\nthe equivalence list names mutants that are gone or killed: {', '.join(sorted(stale))}", file=sys.stderr
+        )
         return 1
     return 0
 

@@ -11,6 +11,7 @@ themselves after a rebuild (the server adds a small script to each page it serve
 _build/html are not changed). A failed build is reported here and the last good site stays served.
 Stop with Ctrl+C.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -93,7 +94,9 @@ def make_handler(out: Path, state: State):
 
 def sync_scripts(changed: list[Path]) -> None:
     """jupytext --sync each chapter script (notebooks/NN_*.py) that was saved."""
-    scripts = [p for p in changed if p.suffix == ".py" and p.parent.name == "notebooks" and p.with_suffix(".ipynb").exists()]
+    scripts = [
+        p for p in changed if p.suffix == ".py" and p.parent.name == "notebooks" and p.with_suffix(".ipynb").exists()
+    ]
     if scripts:
         jupytext = Path(sys.executable).parent / "jupytext"
         subprocess.run([str(jupytext), "--sync", *map(str, scripts)], check=False, stdout=subprocess.DEVNULL)
@@ -101,8 +104,12 @@ def sync_scripts(changed: list[Path]) -> None:
 
 def build(project: Path, build_dir: Path, state: State) -> None:
     t0 = time.perf_counter()
-    proc = subprocess.run([sys.executable, str(BUILD_SCRIPT), "--project", str(project), "--build-dir", str(build_dir)],
-                          capture_output=True, text=True, stdin=subprocess.DEVNULL)
+    proc = subprocess.run(
+        [sys.executable, str(BUILD_SCRIPT), "--project", str(project), "--build-dir", str(build_dir)],
+        capture_output=True,
+        text=True,
+        stdin=subprocess.DEVNULL,
+    )
     took = time.perf_counter() - t0
     with state.lock:
         if proc.returncode == 0:
@@ -111,8 +118,11 @@ def build(project: Path, build_dir: Path, state: State) -> None:
             print(f"serve: built in {took:.1f} s (build {state.build_id})", flush=True)
         else:
             state.ok = False
-            print(f"serve: the build failed after {took:.1f} s; still serving the last good site.\n"
-                  + proc.stderr.strip()[-2000:], flush=True)
+            print(
+                f"serve: the build failed after {took:.1f} s; still serving the last good site.\n"
+                + proc.stderr.strip()[-2000:],
+                flush=True,
+            )
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -140,8 +150,12 @@ def main(argv: list[str] | None = None) -> int:
             time.sleep(0.3)  # let an editor finish writing
             now = watched_files(project)
             changed = [p for p in now if seen.get(p) != now[p]] + [p for p in seen if p not in now]
-            print("serve: changed " + ", ".join(str(p.relative_to(project) if p.is_relative_to(project) else p)
-                                                for p in changed[:5]) + (" ..." if len(changed) > 5 else ""), flush=True)
+            print(
+                "serve: changed "
+                + ", ".join(str(p.relative_to(project) if p.is_relative_to(project) else p) for p in changed[:5])
+                + (" ..." if len(changed) > 5 else ""),
+                flush=True,
+            )
             sync_scripts(changed)
             seen = watched_files(project)  # after the sync (it writes the pair), before the build
             build(project, build_dir, state)

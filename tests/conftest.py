@@ -4,6 +4,7 @@ Hypothesis draws its examples from a fixed seed (``derandomize``) and keeps no e
 the same commit runs the same examples on every machine: a property test fails reproducibly or not at
 all. Set ``HYPOTHESIS_PROFILE=explore`` to draw fresh random examples while developing.
 """
+
 from __future__ import annotations
 
 import os

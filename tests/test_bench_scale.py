@@ -1,4 +1,5 @@
 """benchmarks/bench_scale.py: one measured run on the 1,500-trial corpus, and the scaling fit on exact inputs."""
+
 from __future__ import annotations
 
 import importlib.util
@@ -44,14 +45,16 @@ def test_a_failing_run_is_reported(tmp_path):
     assert r["exit_code"] == 2
     assert r["trials_per_s"] is None
     assert r["stderr_tail"].startswith("error:")
-    row, = bench.summarize([r])
+    (row,) = bench.summarize([r])
     assert row["failed"] == 1 and row["exit_code"] == 2
     assert "failed: exit 2" in bench.markdown_table([row])
 
 
 def test_unknown_option_is_recognized():
-    msg = ("usage: python -m skilllib [-h] [--version] {run} ...\n"
-           "python -m skilllib: error: unrecognized arguments: --workers 2\n")
+    msg = (
+        "usage: python -m skilllib [-h] [--version] {run} ...\n"
+        "python -m skilllib: error: unrecognized arguments: --workers 2\n"
+    )
     assert bench._unknown_option(msg) == "--workers 2"
     assert bench._unknown_option("error: data.csv: no such file") is None
 
@@ -93,8 +96,19 @@ def test_slope_uses_the_large_sizes_only():
 
 
 def test_projection_says_when_memory_exceeds_ram():
-    rows = [{"trials": n, "input": "csv", "mode": "inmemory", "workers": None, "failed": 0,
-             "wall_s": 1e-3 * n, "peak_main_mb": 0.5 * n, "peak_worker_mb": None} for n in NS]
+    rows = [
+        {
+            "trials": n,
+            "input": "csv",
+            "mode": "inmemory",
+            "workers": None,
+            "failed": 0,
+            "wall_s": 1e-3 * n,
+            "peak_main_mb": 0.5 * n,
+            "peak_worker_mb": None,
+        }
+        for n in NS
+    ]
     lines, fits = bench.projections(rows, ram_mb=23 * 1024)
     assert fits["in-memory, csv"]["time_s"]["slope"] == pytest.approx(1.0)
     assert any("exceeds this machine's RAM" in line and "need the cluster" in line for line in lines)
@@ -111,7 +125,7 @@ def test_peak_rss_remembers_a_freed_block():
 
     me = psutil.Process()
     block = bytearray(200 * 2**20)  # touch 200 MB, then let it go: the high-water mark remembers it
-    block[:: 4096] = b"x" * len(block[:: 4096])
+    block[::4096] = b"x" * len(block[::4096])
     during = me.memory_info().rss
     del block
     after = me.memory_info().rss

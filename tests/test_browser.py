@@ -8,6 +8,7 @@ page keeps every line of code. Last, chapter 1 in JupyterLab (`make lab`): opene
 Chromium is driven over the DevTools protocol (websocket-client); skipped only when no Chromium is
 installed (CI installs Debian's).
 """
+
 from __future__ import annotations
 
 import base64
@@ -24,20 +25,32 @@ from pathlib import Path
 
 import nbformat
 import pytest
-
 from test_site import ROOT, SITE_PARAMS, built_site
 
 websocket = pytest.importorskip("websocket", reason="websocket-client is needed to drive Chromium")
 
 CHROMIUM = os.environ.get("CHROMIUM") or next(
-    (p for p in (shutil.which("chromium"), shutil.which("chromium-browser"), "/usr/bin/chromium") if p and Path(p).exists()),
+    (
+        p
+        for p in (shutil.which("chromium"), shutil.which("chromium-browser"), "/usr/bin/chromium")
+        if p and Path(p).exists()
+    ),
     None,
 )
 pytestmark = pytest.mark.skipif(CHROMIUM is None, reason="no Chromium found (apt-get install chromium)")
 
-FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
-         "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-extensions",
-         "--remote-debugging-port=0", "--remote-allow-origins=*"]
+FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--no-first-run",
+    "--disable-extensions",
+    "--remote-debugging-port=0",
+    "--remote-allow-origins=*",
+]
 
 
 class Browser:
@@ -45,8 +58,12 @@ class Browser:
 
     def __init__(self) -> None:
         self.profile = tempfile.mkdtemp(prefix="book-chromium-")
-        self.proc = subprocess.Popen([CHROMIUM, *FLAGS, f"--user-data-dir={self.profile}", "about:blank"],
-                                     stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        self.proc = subprocess.Popen(
+            [CHROMIUM, *FLAGS, f"--user-data-dir={self.profile}", "about:blank"],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
         port_file = Path(self.profile) / "DevToolsActivePort"
         deadline = time.monotonic() + 30
         while not port_file.exists() or not port_file.read_text().strip():
@@ -161,7 +178,9 @@ def test_search_finds_a_word_and_links_its_page(browser, site):
     assert any(h.split("#")[0] == target.url for h in hrefs), f"searching {word!r} did not list {target.url}: {hrefs}"
     # Following the first result opens a page of the site.
     browser.eval("document.querySelector('#search-results a').click()")
-    browser.wait_for(f"location.href.endsWith({json.dumps(hrefs[0].split('#')[0])}) || location.href.includes({json.dumps(hrefs[0])})")
+    browser.wait_for(
+        f"location.href.endsWith({json.dumps(hrefs[0].split('#')[0])}) || location.href.includes({json.dumps(hrefs[0])})"
+    )
 
 
 def test_pages_request_nothing_from_the_network(browser, site):
@@ -193,6 +212,7 @@ def test_phone_width_collapses_the_contents(browser, site):
 
 # ---------------------------------------------------------------- outline, copy, dark mode, previews, print --
 
+
 def _page_with_most_sections(site):
     return max(site.pages, key=lambda p: len(p.soup.select("nav#outline a")))
 
@@ -206,15 +226,19 @@ def test_outline_is_beside_the_text_and_marks_the_section_in_view(browser, site)
     try:
         browser.open(page.path)
         assert browser.eval("document.querySelector('#outline details').open"), "the outline is closed on a wide screen"
-        right_of_text = browser.eval("document.getElementById('outline').getBoundingClientRect().left >= "
-                                     "document.querySelector('main article').getBoundingClientRect().right")
+        right_of_text = browser.eval(
+            "document.getElementById('outline').getBoundingClientRect().left >= "
+            "document.querySelector('main article').getBoundingClientRect().right"
+        )
         assert right_of_text, "the outline is not beside the text"
         for k in (n - 1, n // 2, 1):
             browser.eval(f"""(() => {{ const a = document.querySelectorAll('#outline a')[{k}];
                 document.getElementById(decodeURIComponent(a.getAttribute('href').slice(1))).scrollIntoView(); }})()""")
             browser.wait_for(f"document.querySelectorAll('#outline a')[{k}].classList.contains('active')")
             assert browser.eval("document.querySelectorAll('#outline a.active').length") == 1
-            assert browser.eval(f"document.querySelectorAll('#outline a')[{k}].getAttribute('aria-current')") == "location"
+            assert (
+                browser.eval(f"document.querySelectorAll('#outline a')[{k}].getAttribute('aria-current')") == "location"
+            )
     finally:
         browser.send("Emulation.clearDeviceMetricsOverride")
 
@@ -225,8 +249,10 @@ def test_outline_is_collapsed_above_the_text_on_a_phone(browser, site):
     try:
         browser.open(page.path)
         assert browser.eval("document.querySelector('#outline details').open") is False
-        assert browser.eval("document.getElementById('outline').getBoundingClientRect().bottom <= "
-                            "document.querySelector('main h1').getBoundingClientRect().top"), "the outline is not above the text"
+        assert browser.eval(
+            "document.getElementById('outline').getBoundingClientRect().bottom <= "
+            "document.querySelector('main h1').getBoundingClientRect().top"
+        ), "the outline is not above the text"
         browser.eval("document.querySelector('#outline summary').click()")
         assert browser.eval("document.querySelector('#outline details').open") is True
         assert browser.eval("document.querySelector('#outline a').getBoundingClientRect().height") > 0
@@ -239,8 +265,12 @@ def test_copy_button_copies_its_code(browser, site):
     page = next(p for p in site.pages if p.soup.select("main button.copy"))
     browser.open(page.path)
     for index in (0, -1):
-        code = browser.eval(f"[...document.querySelectorAll('main button.copy')].at({index}).parentNode.querySelector('pre').textContent")
-        browser.eval(f"window.BOOK_LAST_COPY = null; [...document.querySelectorAll('main button.copy')].at({index}).click()")
+        code = browser.eval(
+            f"[...document.querySelectorAll('main button.copy')].at({index}).parentNode.querySelector('pre').textContent"
+        )
+        browser.eval(
+            f"window.BOOK_LAST_COPY = null; [...document.querySelectorAll('main button.copy')].at({index}).click()"
+        )
         browser.wait_for("window.BOOK_LAST_COPY !== null")
         assert browser.eval("window.BOOK_LAST_COPY") == code.rstrip("\n")
         label = browser.eval(f"[...document.querySelectorAll('main button.copy')].at({index}).textContent")
@@ -265,7 +295,9 @@ def test_dark_mode_follows_the_system_and_the_switch(browser, site):
         assert _luminance(browser.eval(bg)) < 0.15, "the system's dark setting is not followed"
         assert _luminance(browser.eval("getComputedStyle(document.body).color")) > 0.7
         if page.soup.select("main img"):  # figures keep a white card
-            assert _luminance(browser.eval("getComputedStyle(document.querySelector('main img')).backgroundColor")) > 0.95
+            assert (
+                _luminance(browser.eval("getComputedStyle(document.querySelector('main img')).backgroundColor")) > 0.95
+            )
         browser.eval("document.getElementById('theme-toggle').click()")  # the reader's choice: light
         assert _luminance(browser.eval(bg)) > 0.9
         browser.open(page.path)  # the choice holds on the next page load, before the first paint
@@ -288,15 +320,21 @@ def _hover(browser, selector: str) -> None:
 def test_hovering_a_reference_previews_its_target(browser, site):
     page = next(p for p in site.pages if p.soup.select('main a.xref[data-xref*="#fig-"]'))
     key = page.soup.select_one('main a.xref[data-xref*="#fig-"]')["data-xref"]
-    caption = site.page(next(p.file for p in site.pages if p.url == key.split("#")[0])).soup.find(
-        id=key.split("#")[1]).find("figcaption").get_text(" ", strip=True)
+    caption = (
+        site.page(next(p.file for p in site.pages if p.url == key.split("#")[0]))
+        .soup.find(id=key.split("#")[1])
+        .find("figcaption")
+        .get_text(" ", strip=True)
+    )
     browser.send("Emulation.setDeviceMetricsOverride", width=1440, height=900, deviceScaleFactor=1, mobile=False)
     try:
         browser.open(page.path)
         _hover(browser, f'main a.xref[data-xref="{key}"]')
         browser.wait_for("document.querySelector('.preview') && document.querySelector('.preview').offsetHeight > 0")
         assert browser.eval("!!document.querySelector('.preview img')")
-        assert caption[:40].replace("\xa0", " ") in browser.eval("document.querySelector('.preview').textContent.replace(/\\s+/g, ' ')")
+        assert caption[:40].replace("\xa0", " ") in browser.eval(
+            "document.querySelector('.preview').textContent.replace(/\\s+/g, ' ')"
+        )
         inside = browser.eval("""(() => { const r = document.querySelector('.preview').getBoundingClientRect();
             return r.left >= 0 && r.right <= innerWidth; })()""")
         assert inside, "the preview runs off the screen"
@@ -309,23 +347,31 @@ def test_hovering_a_reference_previews_its_target(browser, site):
             entry = cited.soup.find(id=label).get_text(" ", strip=True)
             _hover(browser, "main a.cite")
             browser.wait_for("!!document.querySelector('.preview')")
-            assert entry[:30].replace("\xa0", " ") in browser.eval("document.querySelector('.preview').textContent.replace(/\\s+/g, ' ')")
+            assert entry[:30].replace("\xa0", " ") in browser.eval(
+                "document.querySelector('.preview').textContent.replace(/\\s+/g, ' ')"
+            )
     finally:
         browser.send("Emulation.clearDeviceMetricsOverride")
 
 
 def test_print_shows_the_text_only_with_every_line_of_code(browser, site):
     """Printed (to PDF): no sidebar, search box, outline or buttons, and no code line cut off."""
-    page = max((p for p in site.pages if p.soup.select("main pre.code")),
-               key=lambda p: max(len(ln) for pre in p.soup.select("main pre.code") for ln in pre.get_text().splitlines()))
+    page = max(
+        (p for p in site.pages if p.soup.select("main pre.code")),
+        key=lambda p: max(len(ln) for pre in p.soup.select("main pre.code") for ln in pre.get_text().splitlines()),
+    )
     browser.send("Emulation.setDeviceMetricsOverride", width=1280, height=900, deviceScaleFactor=1, mobile=False)
     browser.open(page.path)
     try:
-        wide = browser.eval("[...document.querySelectorAll('main pre.code')].some(p => p.scrollWidth > p.clientWidth + 1)")
+        wide = browser.eval(
+            "[...document.querySelectorAll('main pre.code')].some(p => p.scrollWidth > p.clientWidth + 1)"
+        )
         assert wide, f"{page.url}: no code line wider than its box on screen, nothing to check"
         browser.send("Emulation.setEmulatedMedia", media="print")
         for sel in ("#sidebar", ".search", "#outline", ".topbar", "nav.prev-next", "button.copy"):
-            shown = browser.eval(f"[...document.querySelectorAll({json.dumps(sel)})].some(e => getComputedStyle(e).display !== 'none')")
+            shown = browser.eval(
+                f"[...document.querySelectorAll({json.dumps(sel)})].some(e => getComputedStyle(e).display !== 'none')"
+            )
             assert not shown, f"{sel} is printed"
         cut = browser.eval("""[...document.querySelectorAll('main pre')].filter(p => p.offsetParent)
             .filter(p => p.scrollWidth > p.clientWidth + 1).map(p => p.textContent.slice(0, 60))""")
@@ -362,14 +408,33 @@ class JupyterLab:
             s.bind(("127.0.0.1", 0))
             self.port = s.getsockname()[1]
         self.token = secrets.token_hex(16)
-        cmd = [sys.executable, str(ROOT / "scripts" / "lab.py"), "--root", str(tmp / "root"), "--open", LAB_CHAPTER, "--",
-               "--no-browser", "--ip=127.0.0.1", f"--port={self.port}", "--ServerApp.port_retries=0",
-               f"--IdentityProvider.token={self.token}", "--LabApp.expose_app_in_browser=True",
-               f"--LabApp.user_settings_dir={tmp / 'settings'}", f"--LabApp.workspaces_dir={tmp / 'workspaces'}"]
+        cmd = [
+            sys.executable,
+            str(ROOT / "scripts" / "lab.py"),
+            "--root",
+            str(tmp / "root"),
+            "--open",
+            LAB_CHAPTER,
+            "--",
+            "--no-browser",
+            "--ip=127.0.0.1",
+            f"--port={self.port}",
+            "--ServerApp.port_retries=0",
+            f"--IdentityProvider.token={self.token}",
+            "--LabApp.expose_app_in_browser=True",
+            f"--LabApp.user_settings_dir={tmp / 'settings'}",
+            f"--LabApp.workspaces_dir={tmp / 'workspaces'}",
+        ]
         env = {**os.environ, "JUPYTER_RUNTIME_DIR": str(tmp / "runtime"), "JUPYTER_CONFIG_DIR": str(tmp / "config")}
         self.log = tmp / "lab.log"
-        self.proc = subprocess.Popen(cmd, env=env, stdout=self.log.open("w"), stderr=subprocess.STDOUT,
-                                     stdin=subprocess.DEVNULL, start_new_session=True)
+        self.proc = subprocess.Popen(
+            cmd,
+            env=env,
+            stdout=self.log.open("w"),
+            stderr=subprocess.STDOUT,
+            stdin=subprocess.DEVNULL,
+            start_new_session=True,
+        )
         deadline = time.monotonic() + 90
         while True:
             try:
@@ -378,7 +443,7 @@ class JupyterLab:
             except OSError:
                 if self.proc.poll() is not None or time.monotonic() > deadline:
                     self.stop()
-                    raise RuntimeError("JupyterLab did not start:\n" + self.log.read_text()[-2000:])
+                    raise RuntimeError("JupyterLab did not start:\n" + self.log.read_text()[-2000:]) from None
                 time.sleep(0.2)
 
     @property
@@ -409,9 +474,14 @@ def test_chapter_1_runs_in_jupyterlab_with_myst(browser, tmp_path):
         browser.send("Emulation.setFocusEmulationEnabled", enabled=True)  # JupyterLab tracks the focused panel
         browser.send("Emulation.setDeviceMetricsOverride", width=1400, height=1000, deviceScaleFactor=1, mobile=False)
         browser.send("Page.navigate", url=f"{lab.base}/lab/tree/{LAB_CHAPTER}?token={lab.token}")
-        browser.wait_for(f"window.jupyterapp && {NOTEBOOK} && {NOTEBOOK}.sessionContext.session && "
-                         f"{NOTEBOOK}.sessionContext.session.kernel", timeout=120)
-        kernel = browser.eval(f"(() => {{ const k = {NOTEBOOK}.sessionContext; return [k.session.kernel.name, k.kernelDisplayName]; }})()")
+        browser.wait_for(
+            f"window.jupyterapp && {NOTEBOOK} && {NOTEBOOK}.sessionContext.session && "
+            f"{NOTEBOOK}.sessionContext.session.kernel",
+            timeout=120,
+        )
+        kernel = browser.eval(
+            f"(() => {{ const k = {NOTEBOOK}.sessionContext; return [k.session.kernel.name, k.kernelDisplayName]; }})()"
+        )
         assert kernel == ["skilllib", "Smoothness-based prototypes (skilllib)"], kernel
         # MyST: a reference to an equation reads as the number its equation shows; a note is an admonition
         chapter = nbformat.read(ROOT / LAB_CHAPTER, as_version=4)
@@ -421,22 +491,32 @@ def test_chapter_1_runs_in_jupyterlab_with_myst(browser, tmp_path):
         browser.wait_for(f"document.getElementById('eq-sparc') && {refs_js}.length >= {n_refs}", timeout=60)
         number = browser.eval("document.getElementById('eq-sparc').textContent.trim().match(/\\((\\d+)\\)$/)[0]")
         refs = browser.eval(refs_js)
-        assert refs and all(r == number for r in refs), f"references to eq-sparc read {refs}, the equation shows {number}"
-        assert browser.eval("[...document.querySelectorAll('.jp-MarkdownCell aside')].some(a => /Note/.test(a.textContent))")
+        assert refs and all(r == number for r in refs), (
+            f"references to eq-sparc read {refs}, the equation shows {number}"
+        )
+        assert browser.eval(
+            "[...document.querySelectorAll('.jp-MarkdownCell aside')].some(a => /Note/.test(a.textContent))"
+        )
         # run every cell, as a reader stepping through would
         browser.eval(f"jupyterapp.shell.activateById({NOTEBOOK}.id)")
         browser.eval("jupyterapp.commands.execute('notebook:run-all-cells')")
-        browser.wait_for(f"""(() => {{ const p = {NOTEBOOK};
+        browser.wait_for(
+            f"""(() => {{ const p = {NOTEBOOK};
             const code = p.content.widgets.filter(c => c.model.type === 'code');
             return code.every(c => c.model.executionCount !== null) && p.sessionContext.session.kernel.status === 'idle'; }})()""",
-                         timeout=400)
+            timeout=400,
+        )
         errors = browser.eval(f"""{NOTEBOOK}.content.widgets.filter(c => c.model.type === 'code')
             .flatMap((c, i) => c.model.outputs.toJSON().filter(o => o.output_type === 'error').map(o => [i + 1, o.ename, o.evalue]))""")
         assert not errors, f"cells raised errors (code cell, exception, message): {errors}"
-        shown = browser.eval("document.querySelectorAll('.jp-ErrorOutput, [data-mime-type=\"application/vnd.jupyter.error\"]').length")
+        shown = browser.eval(
+            "document.querySelectorAll('.jp-ErrorOutput, [data-mime-type=\"application/vnd.jupyter.error\"]').length"
+        )
         assert shown == 0
         browser.wait_for("[...document.querySelectorAll('.jp-OutputArea-output img')].some(i => i.naturalWidth > 100)")
-        n_figures = browser.eval("[...document.querySelectorAll('.jp-OutputArea-output img')].filter(i => i.naturalWidth > 100).length")
+        n_figures = browser.eval(
+            "[...document.querySelectorAll('.jp-OutputArea-output img')].filter(i => i.naturalWidth > 100).length"
+        )
         expected = sum(1 for c in chapter.cells if c.cell_type == "code" and "#| label: fig-" in c.source)
         assert n_figures >= expected > 0, f"{n_figures} figures shown, {expected} figure cells"
     finally:

@@ -78,7 +78,9 @@ def test_imports_go_down_the_layers_through_public_faces(module, path):
         assert not private, f"{where}: imports the private module {source} of {theirs}"
         if source == "skilllib":  # from .. import recordings
             assert all(not n.startswith("_") for n in names if n != "__version__"), where
-        assert not [n for n in names if n.startswith("_") and n != "__version__"], f"{where}: a private name of {theirs}"
+        assert not [n for n in names if n.startswith("_") and n != "__version__"], (
+            f"{where}: a private name of {theirs}"
+        )
 
 
 @pytest.mark.parametrize("sub", LAYERS)

@@ -1,5 +1,6 @@
 """scripts/mutation_report.py, the table of README "Mutation testing": the score counts what it says, and
 the interval of a sampled score is the Wilson interval (checked against scipy's)."""
+
 from __future__ import annotations
 
 import importlib.util
@@ -8,8 +9,9 @@ from pathlib import Path
 import pytest
 from scipy.stats import binomtest
 
-SPEC = importlib.util.spec_from_file_location("mutation_report",
-                                              Path(__file__).resolve().parents[1] / "scripts" / "mutation_report.py")
+SPEC = importlib.util.spec_from_file_location(
+    "mutation_report", Path(__file__).resolve().parents[1] / "scripts" / "mutation_report.py"
+)
 report = importlib.util.module_from_spec(SPEC)
 SPEC.loader.exec_module(report)
 
@@ -38,8 +40,11 @@ def test_score_leaves_out_unchecked_and_equivalent_mutants():
 def test_split_modules_count_with_their_parent_and_a_full_run_has_no_interval():
     """``_spectral`` is reported with its sub-package ``smoothness``, ``_ik`` with ``robot``; all checked: no
     interval."""
-    results = {"skilllib.smoothness._spectral.x_a__mutmut_1": "killed",
-               "skilllib.smoothness._measures.x_b__mutmut_1": "survived", "skilllib.robot._ik.x_c__mutmut_1": "killed"}
+    results = {
+        "skilllib.smoothness._spectral.x_a__mutmut_1": "killed",
+        "skilllib.smoothness._measures.x_b__mutmut_1": "survived",
+        "skilllib.robot._ik.x_c__mutmut_1": "killed",
+    }
     rows = {r.split("|")[1].strip(): r for r in report.table(results, {})[2:]}
     assert set(rows) == {"`smoothness`", "`robot`", "all"}
     assert "| 2 | 2 | 1 | 0 | 1 | 50.0% | (all checked) |" in rows["`smoothness`"]
@@ -50,8 +55,10 @@ def test_a_sample_is_scored_against_its_module_with_an_interval():
     """A sample of 2 of a module's 20 mutants: mutants 20, checked 2, and the Wilson interval of 2 / 2
     (catches a sample reported as the whole module, "(all checked)")."""
     population = {f"skilllib.recordings._recordings.x_f__mutmut_{i}": "not checked" for i in range(1, 21)}
-    sample = {"skilllib.recordings._recordings.x_f__mutmut_7": "killed",
-              "skilllib.recordings._recordings.x_f__mutmut_17": "killed"}
+    sample = {
+        "skilllib.recordings._recordings.x_f__mutmut_7": "killed",
+        "skilllib.recordings._recordings.x_f__mutmut_17": "killed",
+    }
     row = [r for r in report.table(sample, {}, {**population, **sample}) if r.startswith("| `recordings`")][0]
     low, high = report.wilson(2, 2)
     assert row == f"| `recordings` | 20 | 2 | 2 | 0 | 0 | 100.0% | {low:.0%} to {high:.0%} |"

@@ -1,4 +1,5 @@
 """Every chapter is a Jupytext pair: the percent script and the notebook hold the same cells."""
+
 from __future__ import annotations
 
 from pathlib import Path

@@ -6,6 +6,7 @@ theme renders. Each is rebuilt once per session if it is missing or older than i
 What only a browser can check (the outline marking the section in view, copy, dark mode, previews on
 hover, print layout) is in tests/test_browser.py.
 """
+
 from __future__ import annotations
 
 import base64
@@ -41,6 +42,7 @@ REMOTE = re.compile(r"^(https?:)?//", re.I)
 
 # ------------------------------------------------------------------------------------ building --
 
+
 def toc_files(entries) -> list[str]:
     out: list[str] = []
     for e in entries or []:
@@ -61,10 +63,10 @@ def _newest_source(project: Path, files: list[str], cfg: dict) -> float:
     return max(p.stat().st_mtime for p in paths if p.exists())
 
 
-_BUILT: dict[str, "Site | str"] = {}  # a site, or why it could not be built (not retried)
+_BUILT: dict[str, Site | str] = {}  # a site, or why it could not be built (not retried)
 
 
-def built_site(name: str) -> "Site":
+def built_site(name: str) -> Site:
     """The site `name`, (re)built once per session with scripts/build_site.py when missing or stale."""
     if name not in _BUILT:
         try:
@@ -77,7 +79,7 @@ def built_site(name: str) -> "Site":
     return site
 
 
-def _build(name: str) -> "Site":
+def _build(name: str) -> Site:
     project, build_dir = SITES[name]
     cfg = yaml.safe_load((project / "myst.yml").read_text(encoding="utf-8"))
     files = toc_files(cfg["project"]["toc"])
@@ -95,9 +97,20 @@ def _build(name: str) -> "Site":
             raise RuntimeError("node is not installed: the site cannot be built (Node 18+ is required)")
         executed = os.environ.get("BOOK_EXECUTED") if name == "book" else None  # set by `make test`
         proc = subprocess.run(
-            [sys.executable, str(BUILD_SCRIPT), "--project", str(project), "--build-dir", str(build_dir),
-             *(["--executed", executed] if executed else [])],
-            cwd=ROOT, capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=3600,
+            [
+                sys.executable,
+                str(BUILD_SCRIPT),
+                "--project",
+                str(project),
+                "--build-dir",
+                str(build_dir),
+                *(["--executed", executed] if executed else []),
+            ],
+            cwd=ROOT,
+            capture_output=True,
+            text=True,
+            stdin=subprocess.DEVNULL,
+            timeout=3600,
         )
         if proc.returncode != 0:
             raise RuntimeError(f"building the {name} site failed:\n{proc.stdout[-3000:]}\n{proc.stderr[-3000:]}")
@@ -197,6 +210,7 @@ def site(request) -> Site:
 
 # ------------------------------------------------------------------------------------ the tests --
 
+
 def test_one_page_per_toc_entry(site):
     assert [p["file"] for p in site.manifest["pages"]] == site.files
     assert (site.out / "index.html").is_file()
@@ -263,8 +277,9 @@ def test_labelled_figure_cells_are_numbered_figures(site):
             assert "figcaption" in inside, f"{page.url}: figure {label} has no caption"
             if _image_outputs(nbformat.from_dict({"cells": [cell]})):
                 assert "img" in inside, f"{page.url}: figure {label} shows no image"
-            assert re.search(rf'<figure id="{re.escape(label)}"[^>]*>.*?class="caption-number">[^<]*\d', page.html, re.S), \
-                f"{page.url}: figure {label} is not numbered"
+            assert re.search(
+                rf'<figure id="{re.escape(label)}"[^>]*>.*?class="caption-number">[^<]*\d', page.html, re.S
+            ), f"{page.url}: figure {label} is not numbered"
 
 
 def test_internal_links_and_cross_references_resolve(site):
@@ -276,7 +291,9 @@ def test_internal_links_and_cross_references_resolve(site):
                 continue
             target = by_url.get(parts.path, page) if parts.path else page
             if parts.path:
-                assert (page.path.parent / unquote(parts.path)).exists(), f"{page.url}: <{tag} {name}={value}> is missing"
+                assert (page.path.parent / unquote(parts.path)).exists(), (
+                    f"{page.url}: <{tag} {name}={value}> is missing"
+                )
             if parts.fragment and parts.path in ("", *by_url):
                 assert unquote(parts.fragment) in target.ids, f"{page.url}: <{tag} {name}={value}>: no such anchor"
 
@@ -305,8 +322,9 @@ def test_no_remote_scripts_styles_fonts_or_images(site):
 def test_no_root_absolute_links(site):
     for page in site.pages:
         for tag, name, value in page.attr_values("src", "href", "action", "srcset"):
-            assert not (value.startswith("/") and not value.startswith("//")), \
+            assert not (value.startswith("/") and not value.startswith("//")), (
                 f"{page.url}: <{tag} {name}={value}> is root-absolute: the site must open from the file system"
+            )
 
 
 def _search_data(site) -> dict:
@@ -334,8 +352,9 @@ def test_notebook_download_links_resolve(site):
         if not file.endswith(".ipynb"):
             assert not links, f"{page.url}: only notebook pages have a download link"
             continue
-        assert links[0] == page.download and len([x for x in links if x.endswith(".ipynb")]) == 1, \
+        assert links[0] == page.download and len([x for x in links if x.endswith(".ipynb")]) == 1, (
             f"{page.url}: expected one notebook download, {page.download}, first"
+        )
         target = page.path.parent / links[0]
         assert target.is_file() and target.suffix == ".ipynb", f"{page.url}: {links[0]} does not exist"
         nb = nbformat.read(target, as_version=4)
@@ -352,6 +371,7 @@ def test_math_is_rendered_at_build_time(site):
 
 
 # ---------------------------------------------------------------- the fixture's elements --
+
 
 def test_fixture_renders_every_element():
     site = built_site("fixture")
@@ -404,9 +424,15 @@ def test_a_page_myst_cannot_read_fails_the_render(tmp_path):
     shutil.copytree(site.build_dir / "site-src", project, ignore=shutil.ignore_patterns("_build"))
     (project / "notebooks" / "02_second.ipynb").write_text('{"cells": [', encoding="utf-8")
     myst = Path(sys.executable).parent / "myst"
-    proc = subprocess.run([str(myst), "build", "--html"], cwd=project, capture_output=True, text=True,
-                          stdin=subprocess.DEVNULL, env={**os.environ, "CI": "1", "PWD": str(project)},
-                          timeout=300)
+    proc = subprocess.run(
+        [str(myst), "build", "--html"],
+        cwd=project,
+        capture_output=True,
+        text=True,
+        stdin=subprocess.DEVNULL,
+        env={**os.environ, "CI": "1", "PWD": str(project)},
+        timeout=300,
+    )
     assert proc.returncode != 0
     assert "notebooks/02_second.ipynb" in proc.stdout + proc.stderr
 
@@ -417,16 +443,29 @@ def test_a_failing_cell_stops_the_build_naming_chapter_and_cell(tmp_path):
     (project / "index.md").write_text("# Home\n\nA page.\n", encoding="utf-8")
     nb = nbformat.v4.new_notebook()
     nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
-    nb.cells = [nbformat.v4.new_markdown_cell("# Broken"), nbformat.v4.new_code_cell("x = 1"),
-                nbformat.v4.new_code_cell("1 / 0")]
+    nb.cells = [
+        nbformat.v4.new_markdown_cell("# Broken"),
+        nbformat.v4.new_code_cell("x = 1"),
+        nbformat.v4.new_code_cell("1 / 0"),
+    ]
     nbformat.write(nb, project / "notebooks" / "01_broken.ipynb")
-    (project / "myst.yml").write_text(yaml.safe_dump({
-        "version": 1,
-        "project": {"title": "Broken", "toc": [{"file": "index.md"}, {"file": "notebooks/01_broken.ipynb"}]},
-        "site": {"template": str(ROOT / "theme")},
-    }), encoding="utf-8")
-    proc = subprocess.run([sys.executable, str(BUILD_SCRIPT), "--project", str(project)],
-                          capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=600)
+    (project / "myst.yml").write_text(
+        yaml.safe_dump(
+            {
+                "version": 1,
+                "project": {"title": "Broken", "toc": [{"file": "index.md"}, {"file": "notebooks/01_broken.ipynb"}]},
+                "site": {"template": str(ROOT / "theme")},
+            }
+        ),
+        encoding="utf-8",
+    )
+    proc = subprocess.run(
+        [sys.executable, str(BUILD_SCRIPT), "--project", str(project)],
+        capture_output=True,
+        text=True,
+        stdin=subprocess.DEVNULL,
+        timeout=600,
+    )
     assert proc.returncode != 0
     assert "notebooks/01_broken.ipynb: cell 3 (code cell 2) raised ZeroDivisionError: division by zero" in proc.stderr
     assert not (project / "_build" / "html").exists()
@@ -458,10 +497,14 @@ def test_outputs_executed_elsewhere_are_taken_only_for_the_same_code_run_without
     nbformat.write(ran, done_dir / "01_x.ipynb")
     got = bs.executed_elsewhere(src_dir / "01_x.ipynb", "01_x.ipynb", done_dir)
     assert got.cells[0].source == "# Title, edited since" and got.cells[1].outputs[0]["text"] == "1\n"
-    for broken, words in ((lambda c: setattr(c, "source", "print(2)"), "other code"),
-                          (lambda c: setattr(c, "execution_count", None), "did not run"),
-                          (lambda c: c.outputs.append(nbformat.v4.new_output("error", ename="E", evalue="",
-                                                                             traceback=[])), "did not run")):
+    for broken, words in (
+        (lambda c: setattr(c, "source", "print(2)"), "other code"),
+        (lambda c: setattr(c, "execution_count", None), "did not run"),
+        (
+            lambda c: c.outputs.append(nbformat.v4.new_output("error", ename="E", evalue="", traceback=[])),
+            "did not run",
+        ),
+    ):
         bad = nbformat.v4.new_notebook()
         bad.cells = [nbformat.v4.new_markdown_cell("# Title"), nbformat.v4.new_code_cell("print(1)")]
         bad.cells[1].execution_count = 1
@@ -476,6 +519,7 @@ def test_outputs_executed_elsewhere_are_taken_only_for_the_same_code_run_without
 
 # ---------------------------------------------------------------- what readers of MyST books expect --
 
+
 def _headings(page) -> list[tuple[str, str]]:
     """(id, text) of the article's h2/h3 headings (the section anchors "#" left out), in order."""
     out = []
@@ -486,7 +530,7 @@ def _headings(page) -> list[tuple[str, str]]:
 
 
 def test_outline_lists_the_pages_sections(site):
-    """"On this page": one link per h2/h3 of the article, in order, with the heading's text."""
+    """ "On this page": one link per h2/h3 of the article, in order, with the heading's text."""
     for page in site.pages:
         headings = _headings(page)
         nav = page.soup.select_one("nav#outline")
@@ -496,7 +540,9 @@ def test_outline_lists_the_pages_sections(site):
         assert nav is not None and nav.get("aria-label") == "On this page", f"{page.url}: no outline"
         assert nav.select_one("details > summary").get_text() == "On this page"
         links = [(a["href"], a.get_text(" ", strip=True)) for a in nav.select("a")]
-        assert links == [(f"#{i}", t) for i, t in headings], f"{page.url}: outline {links[:3]}... != headings {headings[:3]}..."
+        assert links == [(f"#{i}", t) for i, t in headings], (
+            f"{page.url}: outline {links[:3]}... != headings {headings[:3]}..."
+        )
         assert not nav.find_parent("main"), "the outline is a column of its own, not inside the text"
 
 
@@ -506,7 +552,9 @@ def test_every_code_block_has_a_copy_button(site):
         buttons = page.soup.select("main button.copy")
         assert len(buttons) == len(pres), f"{page.url}: {len(pres)} code blocks, {len(buttons)} copy buttons"
         for b in buttons:
-            assert b.get("type") == "button" and b.parent.select_one(":scope > pre.code"), f"{page.url}: a copy button without its code"
+            assert b.get("type") == "button" and b.parent.select_one(":scope > pre.code"), (
+                f"{page.url}: a copy button without its code"
+            )
 
 
 def test_cell_tags_hide_and_remove_what_they_say(site):
@@ -516,8 +564,11 @@ def test_cell_tags_hide_and_remove_what_they_say(site):
         page = site.page(file)
         folded = "".join(d.get_text() for d in page.soup.select("details.code-hidden"))
         shown_outputs = "".join(o.get_text() for o in page.soup.select("main .outputs"))
-        shown_code = [pre.get_text() for pre in page.soup.select("main pre.code")
-                      if not pre.find_parent("details", class_="code-hidden")]
+        shown_code = [
+            pre.get_text()
+            for pre in page.soup.select("main pre.code")
+            if not pre.find_parent("details", class_="code-hidden")
+        ]
         for cell in site.executed(file).cells:
             if cell.cell_type != "code":
                 continue
@@ -535,7 +586,9 @@ def test_cell_tags_hide_and_remove_what_they_say(site):
             texts = [o.get("text", "") for o in cell.get("outputs", []) if o.get("output_type") == "stream"]
             for t in (t.strip() for t in texts if t.strip() and "\x1b" not in t and "\r" not in t):
                 if tags & {"remove-cell", "remove-output"}:
-                    assert t.splitlines()[0] not in shown_outputs, f"{page.url}: a {sorted(tags)} cell's output is shown"
+                    assert t.splitlines()[0] not in shown_outputs, (
+                        f"{page.url}: a {sorted(tags)} cell's output is shown"
+                    )
                 elif "remove-input" not in tags:
                     assert t.splitlines()[0] in shown_outputs, f"{page.url}: a cell's output is missing"
 
@@ -545,8 +598,9 @@ def test_no_stray_object_reprs_in_outputs(site):
     for page in site.pages:
         for out in page.soup.select("pre.output"):
             text = out.get_text()
-            assert not re.search(r"^Figure\(\d+x\d+\)$|<Figure size \d+x\d+|<matplotlib\.\w+", text, re.M), \
+            assert not re.search(r"^Figure\(\d+x\d+\)$|<Figure size \d+x\d+|<matplotlib\.\w+", text, re.M), (
                 f"{page.url}: stray output {text[:80]!r}"
+            )
 
 
 def test_hover_previews_carry_their_targets(site):
@@ -625,7 +679,9 @@ def test_citations_link_to_bibliography_entries(site):
                 assert refs[label].find("a", href=f"https://doi.org/{doi}"), f"{page.url}: {label}'s DOI is not linked"
         cited_anywhere |= labels
     if site.name == "book":
-        assert cited_anywhere == set(bib), f"references.bib lists works no page cites: {sorted(set(bib) - cited_anywhere)}"
+        assert cited_anywhere == set(bib), (
+            f"references.bib lists works no page cites: {sorted(set(bib) - cited_anywhere)}"
+        )
 
 
 def test_no_citation_is_left_as_plain_text(site):
@@ -665,6 +721,7 @@ def test_footer_names_version_commit_and_build_date(site):
         assert re.search(r"Built \d{4}-\d\d-\d\d \d\d:\d\d UTC", text), text
         if site.name == "book":
             import skilllib
+
             assert f"Version {skilllib.__version__}" in text, text
 
 
@@ -690,6 +747,7 @@ def test_dark_mode_redefines_every_colour():
 
 # ---------------------------------------------------------------- the API reference --
 
+
 def _public_api(package: str = "skilllib") -> dict[str, object]:
     """Every public function and class of every public module, found independently of
     scripts/api_page.py: module path -> object."""
@@ -704,8 +762,11 @@ def _public_api(package: str = "skilllib") -> dict[str, object]:
             continue
         module = importlib.import_module(info.name)
         for name, obj in vars(module).items():
-            if not name.startswith("_") and (inspect.isfunction(obj) or inspect.isclass(obj)) \
-                    and obj.__module__ == info.name:
+            if (
+                not name.startswith("_")
+                and (inspect.isfunction(obj) or inspect.isclass(obj))
+                and obj.__module__ == info.name
+            ):
                 found[f"{info.name}.{name}"] = obj
     return found
 
@@ -723,10 +784,12 @@ def test_api_page_lists_every_public_function_with_its_units():
         assert heading is not None and heading.name in ("h3",), f"API page: no entry for {dotted}"
         units = heading.find_next("strong", string="Units:")
         assert units is not None and units.find_previous(["h3"]) is heading, f"{dotted}: no units line"
+
     # the units shown are those the docstring states, for functions whose units are known
     def units_of(dotted):
         heading = ids[dotted.replace(".", "-").replace("_", "-").lower()]
         return [c.get_text() for c in heading.find_next("strong", string="Units:").parent.find_all("code")]
+
     assert {"m/s", "Hz"} <= set(units_of("skilllib.smoothness.sparc"))
     assert "rad/s" in units_of("skilllib.robot.transfer")
     assert {"m", "s"} <= set(units_of("skilllib.smoothness.minimum_jerk_speed"))
@@ -737,8 +800,13 @@ def test_api_page_lists_every_public_function_with_its_units():
     assert page.article.select("a.xref"), "the docstrings' :func: references are not links"
     # the sidebar lists it and the chapters link to it
     assert any(a.get("href") == "api.html" for a in site.page("index.md").soup.select("nav.toc a"))
-    linked = {a["data-xref"] for p in site.pages if p.file != "api.md" for a in p.soup.select("main a.xref")
-              if a["data-xref"].startswith("api.html#")}
+    linked = {
+        a["data-xref"]
+        for p in site.pages
+        if p.file != "api.md"
+        for a in p.soup.select("main a.xref")
+        if a["data-xref"].startswith("api.html#")
+    }
     assert len(linked) >= 10, f"the chapters link to {len(linked)} API entries"
 
 
@@ -747,22 +815,39 @@ def test_api_page_stops_on_a_docstring_markup_error(tmp_path):
     pkg = tmp_path / "brokenpkg"
     pkg.mkdir()
     (pkg / "__init__.py").write_text('"""A package."""\n', encoding="utf-8")
-    (pkg / "mod.py").write_text('def f(x):\n    """Speed |v| in m/s.\n\n    Second line with :func:`g`."""\n'
-                                '    return x\n\n\ndef g():\n    """Fine, in s."""\n', encoding="utf-8")
-    proc = subprocess.run([sys.executable, str(ROOT / "scripts" / "api_page.py"), "--package", "brokenpkg"],
-                          cwd=tmp_path, capture_output=True, text=True, env={**os.environ, "PYTHONPATH": str(tmp_path)})
+    (pkg / "mod.py").write_text(
+        'def f(x):\n    """Speed |v| in m/s.\n\n    Second line with :func:`g`."""\n'
+        '    return x\n\n\ndef g():\n    """Fine, in s."""\n',
+        encoding="utf-8",
+    )
+    proc = subprocess.run(
+        [sys.executable, str(ROOT / "scripts" / "api_page.py"), "--package", "brokenpkg"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        env={**os.environ, "PYTHONPATH": str(tmp_path)},
+    )
     assert proc.returncode == 1
     assert "brokenpkg.mod.f" in proc.stderr and "docstring line 1" in proc.stderr and "substitution" in proc.stderr
-    (pkg / "mod.py").write_text('def f(x):\n    """Speed ``|v|`` in m/s, see :func:`g`."""\n    return x\n\n\n'
-                                'def g():\n    """Fine, in s."""\n', encoding="utf-8")
-    proc = subprocess.run([sys.executable, str(ROOT / "scripts" / "api_page.py"), "--package", "brokenpkg"],
-                          cwd=tmp_path, capture_output=True, text=True, env={**os.environ, "PYTHONPATH": str(tmp_path)})
+    (pkg / "mod.py").write_text(
+        'def f(x):\n    """Speed ``|v|`` in m/s, see :func:`g`."""\n    return x\n\n\n'
+        'def g():\n    """Fine, in s."""\n',
+        encoding="utf-8",
+    )
+    proc = subprocess.run(
+        [sys.executable, str(ROOT / "scripts" / "api_page.py"), "--package", "brokenpkg"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        env={**os.environ, "PYTHONPATH": str(tmp_path)},
+    )
     assert proc.returncode == 0, proc.stderr
-    assert '(brokenpkg.mod.f)=' in proc.stdout and '**Units:** `m/s`' in proc.stdout
+    assert "(brokenpkg.mod.f)=" in proc.stdout and "**Units:** `m/s`" in proc.stdout
     assert '<a class="reference external" href="#brokenpkg.mod.g"><code>g()</code></a>' in proc.stdout
 
 
 # ---------------------------------------------------------------- the execution cache --
+
 
 def test_cache_reuses_outputs_when_only_prose_changed(tmp_path):
     """The cache key is the code cells (in order) and the inputs' digest: a markdown edit or a tag
@@ -794,8 +879,9 @@ def test_cache_reuses_outputs_when_only_prose_changed(tmp_path):
     nbformat.write(nb, src)
     assert cache.get(src, "n.ipynb") is not None
     (project / "data" / "x.csv").write_text("2\n", encoding="utf-8")
-    assert bs.ExecutionCache(tmp_path / "cache", bs.inputs_digest(project)).get(src, "n.ipynb") is None, \
+    assert bs.ExecutionCache(tmp_path / "cache", bs.inputs_digest(project)).get(src, "n.ipynb") is None, (
         "a changed data file must execute again"
+    )
     assert len(list((tmp_path / "cache").glob("n-*.ipynb"))) == 1
 
 
@@ -813,9 +899,24 @@ def test_serve_rebuilds_on_save_and_pages_reload(tmp_path):
     (project / "myst.yml").write_text(yaml.safe_dump(cfg, sort_keys=False), encoding="utf-8")
     if (SITES["fixture"][1] / "cache").is_dir():
         shutil.copytree(SITES["fixture"][1] / "cache", tmp_path / "build" / "cache")
-    proc = subprocess.Popen([sys.executable, str(ROOT / "scripts" / "serve.py"), "--project", str(project),
-                             "--build-dir", str(tmp_path / "build"), "--port", "0", "--interval", "0.3"],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, stdin=subprocess.DEVNULL)
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            str(ROOT / "scripts" / "serve.py"),
+            "--project",
+            str(project),
+            "--build-dir",
+            str(tmp_path / "build"),
+            "--port",
+            "0",
+            "--interval",
+            "0.3",
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        stdin=subprocess.DEVNULL,
+    )
     try:
         lines = []
         for line in proc.stdout:
@@ -841,8 +942,9 @@ def test_serve_rebuilds_on_save_and_pages_reload(tmp_path):
             assert proc.poll() is None and time.monotonic() < deadline, "no rebuild after the save"
             time.sleep(0.3)
         assert "A sentence saved while serving." in get("index.html")
-        assert not (tmp_path / "build" / "html" / "index.html").read_text(encoding="utf-8").count("__build"), \
+        assert not (tmp_path / "build" / "html" / "index.html").read_text(encoding="utf-8").count("__build"), (
             "the reload script belongs to the server, not to the built files"
+        )
     finally:
         proc.send_signal(signal.SIGINT)
         try:

@@ -3,13 +3,12 @@
 :func:`generate_cohort` draws recordings from :class:`CohortModel`; the calibration against the paper's
 published numbers and the seed survey are in ``_calibration`` (the survey is package data).
 """
+
 import lazy_loader as _lazy
 
 __getattr__, __dir__, __all__ = _lazy.attach(
     __name__,
     submod_attrs={
-        "_model": [
-            "CohortModel", "generate_cohort"
-        ],
+        "_model": ["CohortModel", "generate_cohort"],
     },
 )

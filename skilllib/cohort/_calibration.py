@@ -7,6 +7,7 @@ between participants (Fig. 1b). :func:`calibration_table` compares a cohort's fe
 which is how the committed seed :data:`skilllib.cohort.SEED` was chosen (data/README.md). Everything
 here uses the book's SPARC parameters (:data:`skilllib.smoothness.SPARC_PARAMS`).
 """
+
 from __future__ import annotations
 
 import io
@@ -15,10 +16,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ._model import CohortModel, generate_cohort
-from ..recordings import format_recordings, recordings_from_frame
 from ..features import trial_features
 from ..prototypes import silhouette_sweep
+from ..recordings import format_recordings, recordings_from_frame
+from ._model import CohortModel, generate_cohort
 
 #: Calibration targets: the paper's published aggregates and the ranges the cohort must hit.
 TARGETS = {"selected": (600, 700), "silhouette_k6": (0.30, 0.38), "centre_gap": 0.08, "participant_ratio": 1.5}
@@ -35,9 +36,16 @@ def calibration_values(features: pd.DataFrame, sweep=None) -> dict:
     sw = sweep if sweep is not None else silhouette_sweep(sel, 2, 16, scaling="raw")
     cen = np.sort(sw.results[6].centres["pv"].to_numpy())
     med = features[features["status"] != "invalid"].groupby("participant")[["pv", "contact_speed", "duration"]].median()
-    return {"n_selected": len(sel), "n_trials": len(features), "valid_ks": sw.valid_ks(), "n_ks": len(sw.ks),
-            "silhouette_k6": float(sw.results[6].silhouette), "centres_pv": cen,
-            "centre_gap": float(np.diff(cen).min()), "participant_ratio": (med.max() / med.min()).to_dict()}
+    return {
+        "n_selected": len(sel),
+        "n_trials": len(features),
+        "valid_ks": sw.valid_ks(),
+        "n_ks": len(sw.ks),
+        "silhouette_k6": float(sw.results[6].silhouette),
+        "centres_pv": cen,
+        "centre_gap": float(np.diff(cen).min()),
+        "participant_ratio": (med.max() / med.min()).to_dict(),
+    }
 
 
 def calibration_table(features: pd.DataFrame, sweep=None) -> pd.DataFrame:
@@ -56,19 +64,40 @@ def calibration_table(features: pd.DataFrame, sweep=None) -> pd.DataFrame:
     slo, shi = TARGETS["silhouette_k6"]
     n_sel, sil, gap = v["n_selected"], v["silhouette_k6"], v["centre_gap"]
     rows = [
-        ("trials with 0.3 <= contact speed <= 0.7 m/s", "650 of 1500", f"{lo}-{hi}",
-         f"{n_sel} of {v['n_trials']}", lo <= n_sel <= hi),
-        ("valid clusterings, k = 2..16 (raw PV, SPARC)", "all (2..16)", "all 15",
-         f"{len(v['valid_ks'])} of {v['n_ks']}", len(v["valid_ks"]) == 15),
+        (
+            "trials with 0.3 <= contact speed <= 0.7 m/s",
+            "650 of 1500",
+            f"{lo}-{hi}",
+            f"{n_sel} of {v['n_trials']}",
+            lo <= n_sel <= hi,
+        ),
+        (
+            "valid clusterings, k = 2..16 (raw PV, SPARC)",
+            "all (2..16)",
+            "all 15",
+            f"{len(v['valid_ks'])} of {v['n_ks']}",
+            len(v["valid_ks"]) == 15,
+        ),
         ("average silhouette, k = 6 (raw)", "0.337", f"{slo:.2f}-{shi:.2f}", f"{sil:.3f}", slo <= sil <= shi),
-        ("k = 6 centre PVs (m/s), smallest gap", "well separated over the range",
-         f"gap >= {TARGETS['centre_gap']:g} m/s", ", ".join(f"{c:.2f}" for c in v["centres_pv"]) + f"; gap {gap:.3f}",
-         gap >= TARGETS["centre_gap"]),
+        (
+            "k = 6 centre PVs (m/s), smallest gap",
+            "well separated over the range",
+            f"gap >= {TARGETS['centre_gap']:g} m/s",
+            ", ".join(f"{c:.2f}" for c in v["centres_pv"]) + f"; gap {gap:.3f}",
+            gap >= TARGETS["centre_gap"],
+        ),
     ]
     for col, name in [("pv", "PV"), ("contact_speed", "contact speed"), ("duration", "duration")]:
         r = v["participant_ratio"][col]
-        rows.append((f"participant medians of {name}: max / min", "large (Fig. 1b)",
-                     f">= {TARGETS['participant_ratio']:g}", f"{r:.2f}", r >= TARGETS["participant_ratio"]))
+        rows.append(
+            (
+                f"participant medians of {name}: max / min",
+                "large (Fig. 1b)",
+                f">= {TARGETS['participant_ratio']:g}",
+                f"{r:.2f}",
+                r >= TARGETS["participant_ratio"],
+            )
+        )
     return pd.DataFrame(rows, columns=["quantity", "paper", "target", "obtained", "met"]).set_index("quantity")
 
 
@@ -85,10 +114,14 @@ def seed_survey(seeds, model: CohortModel | None = None) -> pd.DataFrame:
         f = trial_features(recordings_from_frame(pd.read_csv(io.StringIO(text))))
         sw = silhouette_sweep(f[f["status"] == "selected"], 2, 16, scaling="raw")
         v = calibration_values(f, sw)
-        rows[int(s)] = {"selected": v["n_selected"], "valid_k": len(v["valid_ks"]),
-                        "silhouette_k6": round(v["silhouette_k6"], 3), "centre_gap": round(v["centre_gap"], 3),
-                        "participant_ratio": round(min(v["participant_ratio"].values()), 2),
-                        "all": bool(calibration_table(f, sw)["met"].all())}
+        rows[int(s)] = {
+            "selected": v["n_selected"],
+            "valid_k": len(v["valid_ks"]),
+            "silhouette_k6": round(v["silhouette_k6"], 3),
+            "centre_gap": round(v["centre_gap"], 3),
+            "participant_ratio": round(min(v["participant_ratio"].values()), 2),
+            "all": bool(calibration_table(f, sw)["met"].all()),
+        }
     out = pd.DataFrame.from_dict(rows, orient="index")
     out.index.name = "seed"
     return out
@@ -97,9 +130,14 @@ def seed_survey(seeds, model: CohortModel | None = None) -> pd.DataFrame:
 def survey_summary(survey: pd.DataFrame) -> pd.Series:
     """How many seeds of a :func:`seed_survey` table meet each target of :func:`calibration_table`."""
     (lo, hi), (slo, shi) = TARGETS["selected"], TARGETS["silhouette_k6"]
-    return pd.Series({"seeds": len(survey), "selected": int(survey["selected"].between(lo, hi).sum()),
-                      "all k valid": int((survey["valid_k"] == 15).sum()),
-                      "silhouette k = 6": int(survey["silhouette_k6"].between(slo, shi).sum()),
-                      "centre gap": int((survey["centre_gap"] >= TARGETS["centre_gap"]).sum()),
-                      "participant ratio": int((survey["participant_ratio"] >= TARGETS["participant_ratio"]).sum()),
-                      "all targets": int(survey["all"].sum())})
+    return pd.Series(
+        {
+            "seeds": len(survey),
+            "selected": int(survey["selected"].between(lo, hi).sum()),
+            "all k valid": int((survey["valid_k"] == 15).sum()),
+            "silhouette k = 6": int(survey["silhouette_k6"].between(slo, shi).sum()),
+            "centre gap": int((survey["centre_gap"] >= TARGETS["centre_gap"]).sum()),
+            "participant ratio": int((survey["participant_ratio"] >= TARGETS["participant_ratio"]).sum()),
+            "all targets": int(survey["all"].sum()),
+        }
+    )

@@ -37,6 +37,7 @@ contact speed (log-normal; its tails compressed smoothly into 0.1-1.8 m/s), corr
 Randomness: ``numpy.random.default_rng`` streams spawned from one seed, one for the participants' traits
 and one per trial, so changing how one trial is drawn leaves every other trial unchanged.
 """
+
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass
@@ -184,12 +185,20 @@ def _participants(rng: np.random.Generator, m: CohortModel) -> list[dict]:
     def lognorm(median: float, sd: float) -> np.ndarray:
         return median * np.exp(sd * ndtri(_strata(rng, n)))
 
-    cols = {"travel": uni(m.travel), "surface_y": uni(m.surface_y),
-            "dur_pref": lognorm(m.dur_median, m.dur_between), "dur_within": uni(m.dur_within),
-            "contact_aim": lognorm(m.aim_median, m.aim_between), "aim_within": uni(m.aim_within),
-            "rtpv": uni(m.rtpv), "correction_rate": uni(m.correction_rate),
-            "start_x": rng.normal(0, 0.02, n), "start_z": rng.normal(0, 0.02, n),
-            "tilt_x": np.deg2rad(rng.normal(0, m.tilt_sd, n)), "tilt_z": np.deg2rad(rng.normal(0, m.tilt_sd, n))}
+    cols = {
+        "travel": uni(m.travel),
+        "surface_y": uni(m.surface_y),
+        "dur_pref": lognorm(m.dur_median, m.dur_between),
+        "dur_within": uni(m.dur_within),
+        "contact_aim": lognorm(m.aim_median, m.aim_between),
+        "aim_within": uni(m.aim_within),
+        "rtpv": uni(m.rtpv),
+        "correction_rate": uni(m.correction_rate),
+        "start_x": rng.normal(0, 0.02, n),
+        "start_z": rng.normal(0, 0.02, n),
+        "tilt_x": np.deg2rad(rng.normal(0, m.tilt_sd, n)),
+        "tilt_z": np.deg2rad(rng.normal(0, m.tilt_sd, n)),
+    }
     return [{"participant": str(i + 1), **{k: float(v[i]) for k, v in cols.items()}} for i in range(n)]
 
 
@@ -270,9 +279,18 @@ def _trial(rng: np.random.Generator, m: CohortModel, p: dict, trial: int) -> tup
     frame = (t, pos, (t >= tc).astype(np.int64))
     tf = np.linspace(onset, tc, max(int(np.ceil((tc - onset) * 1e3)), 2) + 1)  # noise-free truth, ~1 kHz
     vf = np.linalg.norm(np.gradient(position(tf), tf, axis=0), axis=1)
-    truth = {"participant": p["participant"], "trial": str(trial), "travel": h, "t_onset": onset, "t_contact": tc,
-             "pv": float(vf.max()), "contact_speed": float(vf[-1]), "contact_aim": vc_aim,
-             "n_corrections": n_corr, "rtpv": subs[0][3]}
+    truth = {
+        "participant": p["participant"],
+        "trial": str(trial),
+        "travel": h,
+        "t_onset": onset,
+        "t_contact": tc,
+        "pv": float(vf.max()),
+        "contact_speed": float(vf[-1]),
+        "contact_aim": vc_aim,
+        "n_corrections": n_corr,
+        "rtpv": subs[0][3],
+    }
     return frame, truth
 
 
@@ -292,10 +310,17 @@ def generate_cohort(seed: int = SEED, model: CohortModel | None = None) -> Cohor
             truths.append(tru)
     n = np.array([len(f[0]) for f in frames])
     pos = np.concatenate([f[1] for f in frames])
-    frame = pd.DataFrame({"participant": np.repeat(np.array([tr["participant"] for tr in truths], dtype=object), n),
-                          "trial": np.repeat(np.array([tr["trial"] for tr in truths], dtype=object), n),
-                          "t": np.concatenate([f[0] for f in frames]), "x": pos[:, 0], "y": pos[:, 1],
-                          "z": pos[:, 2], "contact": np.concatenate([f[2] for f in frames])})[list(COLUMNS)]
+    frame = pd.DataFrame(
+        {
+            "participant": np.repeat(np.array([tr["participant"] for tr in truths], dtype=object), n),
+            "trial": np.repeat(np.array([tr["trial"] for tr in truths], dtype=object), n),
+            "t": np.concatenate([f[0] for f in frames]),
+            "x": pos[:, 0],
+            "y": pos[:, 1],
+            "z": pos[:, 2],
+            "contact": np.concatenate([f[2] for f in frames]),
+        }
+    )[list(COLUMNS)]
     participants = pd.DataFrame(parts).set_index("participant")
     return Cohort(frame, participants, pd.DataFrame(truths), m, seed)
 
@@ -347,6 +372,5 @@ def model_table(model: CohortModel | None = None) -> pd.DataFrame:
     """The generator's parameters as a table (value, unit, meaning); ranges are (low, high) of a uniform
     draw, pairs marked "mean and SD" are those of a normal one."""
     m = asdict(model or CohortModel())
-    rows = {k: {"value": str(v), "unit": PARAMETER_DOCS[k][0], "meaning": PARAMETER_DOCS[k][1]}
-            for k, v in m.items()}
+    rows = {k: {"value": str(v), "unit": PARAMETER_DOCS[k][0], "meaning": PARAMETER_DOCS[k][1]} for k, v in m.items()}
     return pd.DataFrame.from_dict(rows, orient="index").rename_axis("parameter")

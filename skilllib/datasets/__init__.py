@@ -4,6 +4,7 @@
 It is package data, so an installed skilllib (``pip install .``, not only an editable checkout) runs
 ``python -m skilllib run`` on it from any folder. In the repository ``data/cohort.csv`` links to it.
 """
+
 from __future__ import annotations
 
 from importlib.resources import files

@@ -5,24 +5,35 @@ the paper's window, :func:`segment` one trial's analysed segment. Behind it: the
 filter and Winter's residual analysis (``_filtering``), one trial's segmentation (``_segmentation``),
 the same for many trials at once (``_vectorised``) and for a Parquet dataset on a Dask cluster (``_dask``).
 """
+
 import lazy_loader as _lazy
 
 __getattr__, __dir__, __all__ = _lazy.attach(
     __name__,
     submod_attrs={
-        "_dask": [
-            "cluster_features"
-        ],
-        "_filtering": [
-            "choose_lowpass", "Lowpass", "NO_FILTER", "parse_lowpass"
-        ],
+        "_dask": ["cluster_features"],
+        "_filtering": ["choose_lowpass", "Lowpass", "NO_FILTER", "parse_lowpass"],
         "_segmentation": [
-            "CONTACT_WINDOW", "DIFF_SPAN_S", "diff_window", "MIN_DIFF_WINDOW", "MIN_SEGMENT_SAMPLES",
-            "ONSET_SPEED", "segment_arrays", "velocity"
+            "CONTACT_WINDOW",
+            "DIFF_SPAN_S",
+            "diff_window",
+            "MIN_DIFF_WINDOW",
+            "MIN_SEGMENT_SAMPLES",
+            "ONSET_SPEED",
+            "segment_arrays",
+            "velocity",
         ],
         "_table": [
-            "approaches", "FEATURE_COLUMNS", "participant_summary", "rest_speed", "run_lowpass",
-            "segment", "select", "SPARC_PARAMS", "status_counts", "trial_features"
+            "approaches",
+            "FEATURE_COLUMNS",
+            "participant_summary",
+            "rest_speed",
+            "run_lowpass",
+            "segment",
+            "select",
+            "SPARC_PARAMS",
+            "status_counts",
+            "trial_features",
         ],
     },
 )

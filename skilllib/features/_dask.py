@@ -23,6 +23,7 @@ single-threaded worker processes; ``--scheduler ADDRESS`` connects to a running 
 ``dask scheduler`` and ``dask worker`` on the nodes, dask-jobqueue on a batch system, dask-kubernetes).
 The workers need skilllib installed and the dataset's path readable at the same place.
 """
+
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
@@ -33,15 +34,24 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from ..recordings import (
+    COLUMNS,
+    RATE_TOLERANCE,
+    DataFormatError,
+    Recordings,
+    check_corpus_units,
+    corpus_rate,
+    first_true,
+    is_parquet,
+    natural_key,
+    parquet_files,
+    read_parquet,
+    recordings_from_frame,
+)
 from . import _vectorised as batch
-from ..recordings import check_corpus_units, corpus_rate
-from ..recordings import is_parquet, parquet_files, read_parquet
-from ..recordings import COLUMNS, DataFormatError, Recordings, natural_key, recordings_from_frame
-from ._table import trial_features
 from ._filtering import SPEED_NOISE_LIMIT, Lowpass, choose_lowpass, residual_trials, speed_noise
 from ._segmentation import MIN_DIFF_WINDOW, diff_window
-from ..recordings import first_true
-from ..recordings import RATE_TOLERANCE
+from ._table import trial_features
 
 
 def _recordings(path: str, rate: tuple[float, float]) -> Recordings:
@@ -55,8 +65,10 @@ def partition_rates(path: str) -> dict[str, Any]:
     rec = _recordings(path, (np.nan, np.nan))
     stats = rec._cache.get("stats")
     none = np.full(len(rec), np.nan)
-    return {"keys": rec.keys(), **{k: none if stats is None else getattr(stats, k)
-                                   for k in ("med_dt", "mean_dt", "span", "step95")}}
+    return {
+        "keys": rec.keys(),
+        **{k: none if stats is None else getattr(stats, k) for k in ("med_dt", "mean_dt", "span", "step95")},
+    }
 
 
 def partition_noise(path: str, rate: tuple[float, float]) -> dict[str, Any]:
@@ -72,7 +84,7 @@ def partition_noise(path: str, rate: tuple[float, float]) -> dict[str, Any]:
         if rec.is_resampled(*rec.keys()[i]):
             d = rec.trial(*rec.keys()[i])
             hits = np.flatnonzero(d.contact)
-            separate[int(i)] = d.pos[:int(hits[0])] if hits.size else d.pos
+            separate[int(i)] = d.pos[: int(hits[0])] if hits.size else d.pos
             length[i] = len(separate[int(i)])
     picked = ok & (length >= 4)
     est = batch.rest_noise_estimates(pos, runs, length, picked, rate_fs(rate), separate)
@@ -87,14 +99,15 @@ def partition_approaches(path: str, rate: tuple[float, float], which: Sequence[i
     for i in np.flatnonzero((rec.trials["status"] == "ok").to_numpy()):
         d = rec.trial(*rec.keys()[i])  # resampled trials as resampled, as in memory
         hits = np.flatnonzero(d.contact)
-        a = d.pos[:int(hits[0])] if hits.size else d.pos
+        a = d.pos[: int(hits[0])] if hits.size else d.pos
         if len(a) >= 4:
             picked.append(a)
     return [picked[j] for j in which]
 
 
-def partition_features(path: str, rate: tuple[float, float], lowpass: Lowpass,
-                       options: Mapping[str, Any]) -> pd.DataFrame:
+def partition_features(
+    path: str, rate: tuple[float, float], lowpass: Lowpass, options: Mapping[str, Any]
+) -> pd.DataFrame:
     """Step 3 on a worker: the partition's feature table (:func:`skilllib.features.trial_features`)."""
     return trial_features(_recordings(path, rate), lowpass=lowpass, **options)
 
@@ -128,8 +141,7 @@ def client_for(workers: int | None = None, scheduler: str | None = None):
 
     if scheduler:
         return Client(scheduler)
-    cluster = LocalCluster(n_workers=int(workers or 1), threads_per_worker=1, processes=True,
-                           dashboard_address=":0")
+    cluster = LocalCluster(n_workers=int(workers or 1), threads_per_worker=1, processes=True, dashboard_address=":0")
     client = Client(cluster)
     client._skilllib_cluster = cluster  # closed by close_client
     return client
@@ -142,8 +154,13 @@ def close_client(client) -> None:
         cluster.close()
 
 
-def corpus_features(path: str | Path, client, *, lowpass: str | float | Lowpass | None = "auto",
-                    options: Mapping[str, Any] | None = None) -> DistributedFeatures:
+def corpus_features(
+    path: str | Path,
+    client,
+    *,
+    lowpass: str | float | Lowpass | None = "auto",
+    options: Mapping[str, Any] | None = None,
+) -> DistributedFeatures:
     """The feature table of the Parquet folder ``path`` computed on ``client``'s cluster (module
     docstring). ``options``: keywords of :func:`skilllib.features.trial_features` (sparc_params, window,
     onset_speed, min_samples). Raises DataFormatError as the in-memory path does, and when a trial lies
@@ -157,9 +174,11 @@ def corpus_features(path: str | Path, client, *, lowpass: str | float | Lowpass 
     for k, p in enumerate(parts):
         for key in p["keys"]:
             if key in owner:
-                raise DataFormatError(f"{path}: trial {key[1]!r} of participant {key[0]!r} lies in two partitions, "
-                                      f"{Path(files[owner[key]]).name} and {Path(files[k]).name}: a partition must "
-                                      f"hold whole trials")
+                raise DataFormatError(
+                    f"{path}: trial {key[1]!r} of participant {key[0]!r} lies in two partitions, "
+                    f"{Path(files[owner[key]]).name} and {Path(files[k]).name}: a partition must "
+                    f"hold whole trials"
+                )
             owner[key] = k
     med = np.concatenate([p["med_dt"] for p in parts])
     mean = np.concatenate([p["mean_dt"] for p in parts])
@@ -172,13 +191,15 @@ def corpus_features(path: str | Path, client, *, lowpass: str | float | Lowpass 
         step = np.concatenate([p["step95"] for p in parts])
         check_corpus_units(str(path), span[ok], step[ok] / rate[1])
     filt = _corpus_lowpass(files, client, rate, lowpass)
-    tables = client.gather(client.map(partition_features, files, rate=rate, lowpass=filt,
-                                      options=dict(options or {}), pure=False))
+    tables = client.gather(
+        client.map(partition_features, files, rate=rate, lowpass=filt, options=dict(options or {}), pure=False)
+    )
     features = pd.concat(tables, ignore_index=True)
     features.attrs["lowpass"] = filt
     partition = np.repeat(np.arange(len(files)), [len(t) for t in tables])
-    return DistributedFeatures(features, rate_fs(rate) if np.isfinite(rate[1]) else np.nan, rate, filt, files,
-                               partition)
+    return DistributedFeatures(
+        features, rate_fs(rate) if np.isfinite(rate[1]) else np.nan, rate, filt, files, partition
+    )
 
 
 def _corpus_lowpass(files: list[str], client, rate: tuple[float, float], lowpass: Any) -> Lowpass:
@@ -215,7 +236,6 @@ def _corpus_lowpass(files: list[str], client, rate: tuple[float, float], lowpass
     return choose_lowpass("auto", Approaches(), fs, window, noise=noise)
 
 
-
 class PartitionedRecordings:
     """Stands for the recordings of a corpus computed on the cluster: its sampling rate ``fs`` (Hz),
     ``source``, and the segment of any trial, read on the client from the partition that holds it."""
@@ -237,19 +257,30 @@ class ClusterOptionError(ValueError):
     """An option the cluster path does not take (the pipeline reports it as an option error)."""
 
 
-def cluster_features(data: Any, workers: int | None, scheduler: str | None, *, lowpass: Any,
-                     sparc_params: Mapping[str, float], read_options: Mapping[str, Any] | None = None,
-                     variants: Sequence[Any] = ()) -> tuple[PartitionedRecordings, pd.DataFrame]:
+def cluster_features(
+    data: Any,
+    workers: int | None,
+    scheduler: str | None,
+    *,
+    lowpass: Any,
+    sparc_params: Mapping[str, float],
+    read_options: Mapping[str, Any] | None = None,
+    variants: Sequence[Any] = (),
+) -> tuple[PartitionedRecordings, pd.DataFrame]:
     """The run's features on a cluster (``--workers``/``--scheduler``): the recordings' stand-in and the
     feature table. The client (and a LocalCluster it started) is closed before returning. ValueError
     (:class:`ClusterOptionError`) for what the cluster path does not take; DataFormatError (also a
     ValueError) for the data."""
     if data is None or not isinstance(data, (str, Path)) or not Path(data).is_dir() or not is_parquet(data):
-        raise ClusterOptionError("--workers and --scheduler need --data a folder of Parquet files (each holding "
-                                 "whole trials; benchmarks/corpus.py --parquet writes one)")
+        raise ClusterOptionError(
+            "--workers and --scheduler need --data a folder of Parquet files (each holding "
+            "whole trials; benchmarks/corpus.py --parquet writes one)"
+        )
     if any(v is not None for v in dict(read_options or {}).values()) or variants:
-        raise ClusterOptionError("--workers and --scheduler read the recordings format as it is: no --columns, "
-                                 "--units, ... and no --sensitivity")
+        raise ClusterOptionError(
+            "--workers and --scheduler read the recordings format as it is: no --columns, "
+            "--units, ... and no --sensitivity"
+        )
     if workers is not None and (isinstance(workers, bool) or int(workers) < 1):
         raise ClusterOptionError(f"workers must be a number of worker processes >= 1, got {workers!r}")
     client = client_for(workers, scheduler)

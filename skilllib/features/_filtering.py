@@ -24,7 +24,8 @@ paper's 0.05 m/s onset threshold at rest. Biomechanics therefore low-pass filter
   noise of 1-3 % of the peak speed leaves SPARC unchanged). The noise is measured where the protocol
   has the hand at rest, the first :data:`REST_S` of every trial (:func:`rest_noise`: from the median
   absolute fourth difference, which white noise has and a still, swaying or even smoothly moving hand
-  has not; the median over trials). Winter's intercept is not used for this decision: a recording without noise but with an
+  has not; the median over trials). Winter's intercept is not used for this decision: a recording without
+  noise but with an
   abrupt start (a kink) has broadband content that his line reads as noise. The book's 60 Hz cohort (0.03 mm, about
   2 mm/s) is therefore not filtered, and its results are those of the paper's procedure. A number
   filters at that cut-off; ``"none"`` never filters.
@@ -36,6 +37,7 @@ would otherwise keep as a step at the first sample.
 What filtering does to SPARC is shown in chapter 5: it removes spectrum above the cut-off, and a band
 that SPARC reads beyond the cut-off is partly the filter's (the pipeline counts those trials).
 """
+
 from __future__ import annotations
 
 from collections.abc import Sequence
@@ -80,11 +82,11 @@ def _extend(x: np.ndarray, n_pad: int, n_fit_start: int, n_fit_end: int) -> np.n
     n = len(x)
     k0, k1 = max(2, min(n_fit_start, n)), max(2, min(n_fit_end, n))
     a0 = np.polyfit(np.arange(k0, dtype=float), x[:k0], 1)  # (2, m): slope, intercept
-    a1 = np.polyfit(np.arange(k1, dtype=float), x[n - k1:], 1)
+    a1 = np.polyfit(np.arange(k1, dtype=float), x[n - k1 :], 1)
     first = a0[1]
     last = a1[0] * (k1 - 1) + a1[1]
     head = 2 * first - x[n_pad:0:-1]
-    tail = 2 * last - x[n - 2:n - 2 - n_pad:-1]
+    tail = 2 * last - x[n - 2 : n - 2 - n_pad : -1]
     return np.concatenate([head, x, tail])
 
 
@@ -98,20 +100,27 @@ def butterworth_lowpass(pos: np.ndarray, fs: float, cutoff_hz: float, order: int
     decelerates: a short one), so that the filter's start-up transient falls outside the recording."""
     fd = design_frequency(cutoff_hz, order, fs=fs)
     if not 0 < cutoff_hz < fs / 2:
-        raise ValueError(f"a low-pass cut-off of {cutoff_hz:g} Hz (designed at {fd:.3g} Hz) needs a sampling rate "
-                         f"above {2 * fd:.3g} Hz; these recordings are sampled at {fs:g} Hz")
+        raise ValueError(
+            f"a low-pass cut-off of {cutoff_hz:g} Hz (designed at {fd:.3g} Hz) needs a sampling rate "
+            f"above {2 * fd:.3g} Hz; these recordings are sampled at {fs:g} Hz"
+        )
     sos = butter(order, fd, btype="low", fs=fs, output="sos")
     pos = np.asarray(pos, dtype=float)
     shape = pos.shape
     x = pos.reshape(len(pos), -1)
     n_pad = min(len(x) - 1, int(np.ceil(2 * fs / fd)))
-    y = sosfiltfilt(sos, _extend(x, n_pad, max(3, int(round(START_FIT_S * fs))), max(3, int(round(END_FIT_S * fs)))),
-                    axis=0, padtype=None)
-    return y[n_pad:n_pad + len(x)].reshape(shape)
+    y = sosfiltfilt(
+        sos,
+        _extend(x, n_pad, max(3, int(round(START_FIT_S * fs))), max(3, int(round(END_FIT_S * fs)))),
+        axis=0,
+        padtype=None,
+    )
+    return y[n_pad : n_pad + len(x)].reshape(shape)
 
 
-def speed_noise(position_noise_m: float, fs: float, window: int, cutoff_hz: float | None = None,
-                order: int = ORDER) -> float:
+def speed_noise(
+    position_noise_m: float, fs: float, window: int, cutoff_hz: float | None = None, order: int = ORDER
+) -> float:
     """3-D speed noise (RMS, m/s) that white position noise (RMS ``position_noise_m`` m per axis) has after
     the zero-lag low-pass at ``cutoff_hz`` (None: no filter) and the Savitzky-Golay derivative (quadratic,
     ``window`` samples) at ``fs`` Hz: sqrt(3) x the per-axis SD, from the combined gain by Parseval's
@@ -151,8 +160,11 @@ def rest_noise(approaches: Sequence[np.ndarray], fs: float) -> float:
     trial is long enough."""
     n = max(REST_MIN_SAMPLES, int(round(REST_S * fs)))
     scale = 0.6745 * np.sqrt(70)
-    est = [float(np.median(np.abs(np.diff(np.asarray(a[:n], dtype=float), 4, axis=0))) / scale)
-           for a in approaches if len(a) >= n]
+    est = [
+        float(np.median(np.abs(np.diff(np.asarray(a[:n], dtype=float), 4, axis=0))) / scale)
+        for a in approaches
+        if len(a) >= n
+    ]
     return float(np.median(est)) if est else 0.0
 
 
@@ -182,7 +194,7 @@ def residual_analysis(approaches: Sequence[np.ndarray], fs: float) -> ResidualAn
     if not usable:
         raise ValueError("residual analysis needs at least one trial with 4 or more samples")
     length = int(np.median([len(a) for a in usable]))
-    x = np.column_stack([a[len(a) - length:] for a in usable if len(a) >= length])
+    x = np.column_stack([a[len(a) - length :] for a in usable if len(a) >= length])
     top = max_cutoff(fs)
     if top <= 2 * MIN_CUTOFF_HZ:
         raise ValueError(f"a sampling rate of {fs:g} Hz is too low for a residual analysis")
@@ -223,12 +235,17 @@ class Lowpass:
     def to_dict(self) -> dict[str, Any]:
         """results.json ``filter``: kind, order, passes, cutoff_hz, design_hz, chosen_by, noise estimates."""
         on = self.cutoff_hz is not None
-        return {"kind": "butterworth low-pass, forward-backward (zero lag)" if on else None,
-                "order": self.order if on else None, "passes": PASSES if on else None,
-                "cutoff_hz": self.cutoff_hz,
-                "design_hz": design_frequency(self.cutoff_hz, self.order, fs=self.fs) if on else None,
-                "chosen_by": self.chosen_by, "position_noise_m": self.noise_m, "speed_noise_m_s": self.speed_noise,
-                "speed_noise_limit_m_s": SPEED_NOISE_LIMIT if self.chosen_by.startswith(("auto", "winter")) else None}
+        return {
+            "kind": "butterworth low-pass, forward-backward (zero lag)" if on else None,
+            "order": self.order if on else None,
+            "passes": PASSES if on else None,
+            "cutoff_hz": self.cutoff_hz,
+            "design_hz": design_frequency(self.cutoff_hz, self.order, fs=self.fs) if on else None,
+            "chosen_by": self.chosen_by,
+            "position_noise_m": self.noise_m,
+            "speed_noise_m_s": self.speed_noise,
+            "speed_noise_limit_m_s": SPEED_NOISE_LIMIT if self.chosen_by.startswith(("auto", "winter")) else None,
+        }
 
 
 NO_FILTER = Lowpass(None, "none")
@@ -258,8 +275,14 @@ def residual_trials(n: int) -> range:
     return range(0, n, max(1, n // RESIDUAL_TRIALS))[:RESIDUAL_TRIALS]
 
 
-def choose_lowpass(spec: str | float | Lowpass | None, approaches: Sequence[np.ndarray], fs: float,
-                   window: int, *, noise: float | None = None) -> Lowpass:
+def choose_lowpass(
+    spec: str | float | Lowpass | None,
+    approaches: Sequence[np.ndarray],
+    fs: float,
+    window: int,
+    *,
+    noise: float | None = None,
+) -> Lowpass:
     """The :class:`Lowpass` for a run: ``spec`` ``"none"``, a cut-off in Hz, a :class:`Lowpass` (used as it
     is), or ``"auto"``: Winter's residual analysis over (at most :data:`RESIDUAL_TRIALS` of) the trials'
     approach positions, filtering at its cut-off only when the noise it finds, differentiated over
@@ -273,8 +296,10 @@ def choose_lowpass(spec: str | float | Lowpass | None, approaches: Sequence[np.n
         return NO_FILTER
     if spec != "auto":
         if np.isfinite(fs) and float(spec) > max_cutoff(fs):
-            raise ValueError(f"a low-pass cut-off of {spec:g} Hz is too high for recordings sampled at {fs:g} Hz "
-                             f"(at most {max_cutoff(fs):.3g} Hz for the zero-lag filter)")
+            raise ValueError(
+                f"a low-pass cut-off of {spec:g} Hz is too high for recordings sampled at {fs:g} Hz "
+                f"(at most {max_cutoff(fs):.3g} Hz for the zero-lag filter)"
+            )
         return Lowpass(float(spec), "given", fs=fs if np.isfinite(fs) else None)
     pick = [a for a in approaches if len(a) >= 4] if noise is None else approaches
     if not len(pick) or not np.isfinite(fs):
@@ -285,6 +310,11 @@ def choose_lowpass(spec: str | float | Lowpass | None, approaches: Sequence[np.n
         return Lowpass(None, "auto: not needed", noise_m=noise, speed_noise=sn)
     ra = residual_analysis([pick[i] for i in residual_trials(len(pick))], fs)
     if ra.cutoff_hz is None:  # the residual never falls to the noise line: filter at the highest cut-off scanned
-        return Lowpass(float(ra.cutoffs[-1]), "winter residual analysis (no crossing: highest cut-off)",
-                       noise_m=noise, speed_noise=sn, fs=fs)
+        return Lowpass(
+            float(ra.cutoffs[-1]),
+            "winter residual analysis (no crossing: highest cut-off)",
+            noise_m=noise,
+            speed_noise=sn,
+            fs=fs,
+        )
     return Lowpass(ra.cutoff_hz, "winter residual analysis", noise_m=noise, speed_noise=sn, fs=fs)

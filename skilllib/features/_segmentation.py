@@ -4,6 +4,7 @@ The per-trial definitions of :mod:`skilllib.features` (its docstring gives the m
 for it): :func:`velocity`, :func:`segment_arrays` and the texts of the reasons why a trial cannot be
 segmented. :mod:`skilllib.features` computes the same for many trials at once and is tested against these.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -68,9 +69,18 @@ def velocity(pos: np.ndarray, fs: float, span_s: float = DIFF_SPAN_S) -> np.ndar
     return savgol_filter(pos, window, polyorder=2, deriv=1, delta=1.0 / fs, axis=0, mode="interp")
 
 
-def segment_arrays(t: np.ndarray, pos: np.ndarray, contact: np.ndarray, fs: float, *,
-                   onset_speed: float = ONSET_SPEED, min_samples: int = MIN_SEGMENT_SAMPLES,
-                   participant: Any = None, trial: Any = None, lowpass: Lowpass | None = None) -> Segment | str:
+def segment_arrays(
+    t: np.ndarray,
+    pos: np.ndarray,
+    contact: np.ndarray,
+    fs: float,
+    *,
+    onset_speed: float = ONSET_SPEED,
+    min_samples: int = MIN_SEGMENT_SAMPLES,
+    participant: Any = None,
+    trial: Any = None,
+    lowpass: Lowpass | None = None,
+) -> Segment | str:
     """Segment one trial's samples (``contact`` boolean); returns the :class:`Segment` or the reason
     (a string) why the trial cannot be segmented. ``lowpass``: the filter applied to the approach's
     positions before they are differentiated (:mod:`skilllib.features`; None: none); the segment's
@@ -94,8 +104,17 @@ def segment_arrays(t: np.ndarray, pos: np.ndarray, contact: np.ndarray, fs: floa
     n = c - o
     if n < min_samples:
         return too_short_reason(n, min_samples)
-    return Segment(participant, trial, np.asarray(t[o:c], dtype=float), np.asarray(pos[o:c], dtype=float),
-                   vel[o:], speed[o:], float(fs), o, c)
+    return Segment(
+        participant,
+        trial,
+        np.asarray(t[o:c], dtype=float),
+        np.asarray(pos[o:c], dtype=float),
+        vel[o:],
+        speed[o:],
+        float(fs),
+        o,
+        c,
+    )
 
 
 #: The reasons a trial cannot be segmented (:func:`segment_arrays`, :mod:`skilllib.features`).
@@ -111,8 +130,10 @@ def no_onset_reason(onset_speed: float, max_speed: float) -> str:
 
 
 def no_rest_reason(onset_speed: float, first_speed: float) -> str:
-    return (f"no rest before onset: speed {first_speed:.2f} m/s > {onset_speed:g} m/s at the first sample "
-            f"(the movement started before the recording)")
+    return (
+        f"no rest before onset: speed {first_speed:.2f} m/s > {onset_speed:g} m/s at the first sample "
+        f"(the movement started before the recording)"
+    )
 
 
 def too_short_reason(n: int, min_samples: int) -> str:

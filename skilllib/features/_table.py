@@ -33,6 +33,7 @@ For every trial of :class:`skilllib.recordings.Recordings`:
 Every trial stays in the table: ``status`` is ``selected``, ``excluded`` (outside the window, with the
 reason) or ``invalid`` (cannot be segmented or bad samples, with the reason; features NaN).
 """
+
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping, Sequence
@@ -41,10 +42,9 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from . import _vectorised as batch
 from .. import smoothness
-from ..recordings import Recordings, recordings_from_frame, sort_ids
-from ..recordings import first_true
+from ..recordings import Recordings, first_true, recordings_from_frame, sort_ids
+from . import _vectorised as batch
 from ._filtering import Lowpass, choose_lowpass
 from ._segmentation import (
     CONTACT_WINDOW,
@@ -59,17 +59,38 @@ from ._segmentation import (
 
 #: SPARC settings of the SPARC chapter (Balasubramanian et al. 2015 defaults): fc in Hz, amp_th, padlevel
 SPARC_PARAMS: dict[str, float] = dict(smoothness.SPARC_PARAMS)
-FEATURE_COLUMNS = ("participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
-                   "sparc_band_end_hz", "sparc_capped", "ldlj", "n", "t_onset", "t_contact", "resampled")
+FEATURE_COLUMNS = (
+    "participant",
+    "trial",
+    "status",
+    "reason",
+    "pv",
+    "contact_speed",
+    "duration",
+    "sparc",
+    "sparc_band_end_hz",
+    "sparc_capped",
+    "ldlj",
+    "n",
+    "t_onset",
+    "t_contact",
+    "resampled",
+)
 
 
 def _as_recordings(recordings: Recordings | pd.DataFrame) -> Recordings:
     return recordings if isinstance(recordings, Recordings) else recordings_from_frame(recordings)
 
 
-def segment(recordings: Recordings | pd.DataFrame, participant: Any, trial: Any, *,
-            onset_speed: float = ONSET_SPEED, min_samples: int = MIN_SEGMENT_SAMPLES,
-            lowpass: Lowpass | None = None) -> Segment:
+def segment(
+    recordings: Recordings | pd.DataFrame,
+    participant: Any,
+    trial: Any,
+    *,
+    onset_speed: float = ONSET_SPEED,
+    min_samples: int = MIN_SEGMENT_SAMPLES,
+    lowpass: Lowpass | None = None,
+) -> Segment:
     """The segmented approach (onset to the last sample before contact) of one trial; ``lowpass`` as in
     :func:`segment_arrays` (a run's filter: ``features.attrs["lowpass"]`` of :func:`trial_features`).
 
@@ -81,8 +102,17 @@ def segment(recordings: Recordings | pd.DataFrame, participant: Any, trial: Any,
     row = rec.trials[(rec.trials["participant"] == participant) & (rec.trials["trial"] == trial)].iloc[0]
     if row["status"] != "ok":
         raise ValueError(f"trial {trial!r} of participant {participant!r} is invalid: {row['reason']}")
-    seg = segment_arrays(tr.t, tr.pos, tr.contact, rec.fs, onset_speed=onset_speed, min_samples=min_samples,
-                         participant=participant, trial=trial, lowpass=lowpass)
+    seg = segment_arrays(
+        tr.t,
+        tr.pos,
+        tr.contact,
+        rec.fs,
+        onset_speed=onset_speed,
+        min_samples=min_samples,
+        participant=participant,
+        trial=trial,
+        lowpass=lowpass,
+    )
     if isinstance(seg, str):
         raise ValueError(f"trial {trial!r} of participant {participant!r} cannot be segmented: {seg}")
     return seg
@@ -106,7 +136,7 @@ def approaches(recordings: Recordings | pd.DataFrame) -> list[np.ndarray]:
         if status == "ok":
             d = rec.trial(p, tr)
             hits = np.flatnonzero(d.contact)
-            out.append(d.pos[:int(hits[0])] if hits.size else d.pos)
+            out.append(d.pos[: int(hits[0])] if hits.size else d.pos)
     return out
 
 
@@ -130,7 +160,7 @@ def run_lowpass(recordings: Recordings | pd.DataFrame, lowpass: str | float | Lo
         if rec.is_resampled(*keys[i]):
             d = rec.trial(*keys[i])
             hits = np.flatnonzero(d.contact)
-            separate[int(i)] = d.pos[:int(hits[0])] if hits.size else d.pos
+            separate[int(i)] = d.pos[: int(hits[0])] if hits.size else d.pos
             length[i] = len(separate[int(i)])
     picked = np.flatnonzero(ok & (length >= 4))
     if not picked.size or not np.isfinite(fs):
@@ -143,15 +173,21 @@ def run_lowpass(recordings: Recordings | pd.DataFrame, lowpass: str | float | Lo
 
         def __getitem__(self, j):
             i = int(picked[j])
-            return separate[i] if i in separate else pos[runs.start[i]:runs.start[i] + length[i]]
+            return separate[i] if i in separate else pos[runs.start[i] : runs.start[i] + length[i]]
 
     return choose_lowpass("auto", Approaches(), fs, window, noise=noise)
 
 
-def trial_features(recordings: Recordings | pd.DataFrame, *, sparc_params: Mapping[str, float] | None = None,
-                   window: tuple[float, float] = CONTACT_WINDOW, onset_speed: float = ONSET_SPEED,
-                   min_samples: int = MIN_SEGMENT_SAMPLES, lowpass: str | float | Lowpass | None = "auto",
-                   progress: Callable[[Sequence[Any], str], Iterable[Any]] | None = None) -> pd.DataFrame:
+def trial_features(
+    recordings: Recordings | pd.DataFrame,
+    *,
+    sparc_params: Mapping[str, float] | None = None,
+    window: tuple[float, float] = CONTACT_WINDOW,
+    onset_speed: float = ONSET_SPEED,
+    min_samples: int = MIN_SEGMENT_SAMPLES,
+    lowpass: str | float | Lowpass | None = "auto",
+    progress: Callable[[Sequence[Any], str], Iterable[Any]] | None = None,
+) -> pd.DataFrame:
     """One row per trial of ``recordings`` (all of them, in their order) with its features and status.
     Computed for all trials at once (:mod:`skilllib.features`), with the same values as the per-trial
     :func:`segment_arrays`, :func:`skilllib.smoothness.ldlj` and :func:`skilllib.smoothness.sparc_bands`.
@@ -177,8 +213,18 @@ def trial_features(recordings: Recordings | pd.DataFrame, *, sparc_params: Mappi
         pass
     separate = {i: rec.trial(*keys[i]) for i in np.flatnonzero(ok) if rec.is_resampled(*keys[i])}
     t, pos, contact = rec.arrays()
-    seg = batch.segment_many(t, pos, contact, rec.runs(), rec.fs, which=ok, separate=separate,
-                             onset_speed=onset_speed, min_samples=min_samples, lowpass=filt)
+    seg = batch.segment_many(
+        t,
+        pos,
+        contact,
+        rec.runs(),
+        rec.fs,
+        which=ok,
+        separate=separate,
+        onset_speed=onset_speed,
+        min_samples=min_samples,
+        lowpass=filt,
+    )
     done = seg.segmented
     n_all = len(keys)
     sparc = np.full(n_all, np.nan)
@@ -197,14 +243,26 @@ def trial_features(recordings: Recordings | pd.DataFrame, *, sparc_params: Mappi
     status[done & ~inside] = "excluded"
     for i in np.flatnonzero(done & ~inside):
         reason[i] = _window_reason(cs[i], window)
-    out = pd.DataFrame({
-        "participant": np.array([k[0] for k in keys], dtype=object),
-        "trial": np.array([k[1] for k in keys], dtype=object), "status": status, "reason": reason,
-        "pv": seg.pv, "contact_speed": cs, "duration": seg.duration, "sparc": sparc,
-        "sparc_band_end_hz": band_end, "sparc_capped": capped, "ldlj": seg.ldlj,
-        "n": pd.array(np.where(done, seg.n, 0), dtype="Int64"), "t_onset": seg.t_onset,
-        "t_contact": seg.t_contact, "resampled": trials["timing"].astype(bool).to_numpy()},
-        columns=list(FEATURE_COLUMNS))
+    out = pd.DataFrame(
+        {
+            "participant": np.array([k[0] for k in keys], dtype=object),
+            "trial": np.array([k[1] for k in keys], dtype=object),
+            "status": status,
+            "reason": reason,
+            "pv": seg.pv,
+            "contact_speed": cs,
+            "duration": seg.duration,
+            "sparc": sparc,
+            "sparc_band_end_hz": band_end,
+            "sparc_capped": capped,
+            "ldlj": seg.ldlj,
+            "n": pd.array(np.where(done, seg.n, 0), dtype="Int64"),
+            "t_onset": seg.t_onset,
+            "t_contact": seg.t_contact,
+            "resampled": trials["timing"].astype(bool).to_numpy(),
+        },
+        columns=list(FEATURE_COLUMNS),
+    )
     out.loc[~done, "n"] = pd.NA
     out.attrs["lowpass"] = filt
     return out
@@ -229,10 +287,8 @@ def participant_summary(features: pd.DataFrame) -> pd.DataFrame:
     peak speed (m/s), contact speed (m/s), duration (s) and SPARC, and the number of selected trials."""
     valid = features[features["status"] != "invalid"]
     g = valid.groupby("participant", sort=True)
-    cols = {"pv": "PV (m/s)", "contact_speed": "contact speed (m/s)", "duration": "duration (s)",
-            "sparc": "SPARC"}
-    out = pd.DataFrame({"valid trials": g.size(),
-                        "selected": g["status"].agg(lambda s: int((s == "selected").sum()))})
+    cols = {"pv": "PV (m/s)", "contact_speed": "contact speed (m/s)", "duration": "duration (s)", "sparc": "SPARC"}
+    out = pd.DataFrame({"valid trials": g.size(), "selected": g["status"].agg(lambda s: int((s == "selected").sum()))})
     for c, name in cols.items():
         q = g[c].quantile([0.25, 0.5, 0.75]).unstack()
         out[f"{name} median"] = q[0.5]

@@ -17,6 +17,7 @@ samples of windows of 9 or more samples (rates of 240 Hz and above) with a least
 last bits depend on how many profiles are solved together: there the edge velocities agree with the
 per-trial ones to about 1e-15 relative, not bit for bit.
 """
+
 from __future__ import annotations
 
 from collections.abc import Mapping
@@ -27,6 +28,7 @@ import numpy as np
 from scipy.signal import savgol_filter
 
 from .. import smoothness
+from ..recordings import Runs, first_true
 from ._filtering import REST_NOISE_SCALE, Lowpass, rest_samples
 from ._segmentation import (
     MIN_APPROACH_SAMPLES,
@@ -40,7 +42,6 @@ from ._segmentation import (
     segment_arrays,
     too_short_reason,
 )
-from ..recordings import Runs, first_true
 
 
 @dataclass(frozen=True, eq=False)
@@ -70,15 +71,33 @@ class SegmentedTrials:
 
 def _blank(n_trials: int) -> dict[str, np.ndarray]:
     nan = np.full(n_trials, np.nan)
-    return {"reason": np.full(n_trials, "", dtype=object), "onset": np.full(n_trials, -1, np.int64),
-            "contact": np.full(n_trials, -1, np.int64), "n": np.zeros(n_trials, np.int64), "pv": nan.copy(),
-            "contact_speed": nan.copy(), "duration": nan.copy(), "ldlj": nan.copy(), "t_onset": nan.copy(),
-            "t_contact": nan}
+    return {
+        "reason": np.full(n_trials, "", dtype=object),
+        "onset": np.full(n_trials, -1, np.int64),
+        "contact": np.full(n_trials, -1, np.int64),
+        "n": np.zeros(n_trials, np.int64),
+        "pv": nan.copy(),
+        "contact_speed": nan.copy(),
+        "duration": nan.copy(),
+        "ldlj": nan.copy(),
+        "t_onset": nan.copy(),
+        "t_contact": nan,
+    }
 
 
-def segment_many(t: np.ndarray, pos: np.ndarray, contact: np.ndarray, runs: Runs, fs: float, *,
-                 which: np.ndarray | None = None, separate: Mapping[int, Any] | None = None, onset_speed: float = ONSET_SPEED,
-                 min_samples: int = MIN_SEGMENT_SAMPLES, lowpass: Lowpass | None = None) -> SegmentedTrials:
+def segment_many(
+    t: np.ndarray,
+    pos: np.ndarray,
+    contact: np.ndarray,
+    runs: Runs,
+    fs: float,
+    *,
+    which: np.ndarray | None = None,
+    separate: Mapping[int, Any] | None = None,
+    onset_speed: float = ONSET_SPEED,
+    min_samples: int = MIN_SEGMENT_SAMPLES,
+    lowpass: Lowpass | None = None,
+) -> SegmentedTrials:
     """Segment every trial of ``runs`` (rows of ``t`` (R,) s, ``pos`` (R, 3) m, ``contact`` (R,) bool)
     sampled at ``fs`` Hz, as :func:`skilllib.features.segment_arrays` does one by one, and compute its
     features. ``which``: bool mask of the trials to segment (others keep an empty reason and no features:
@@ -121,9 +140,18 @@ def segment_many(t: np.ndarray, pos: np.ndarray, contact: np.ndarray, runs: Runs
     return SegmentedTrials(**out, speeds=[seg_speed[i] for i in order])
 
 
-def _segment_block(out: dict[str, np.ndarray], seg_speed: dict[int, np.ndarray], trials: np.ndarray,
-                   rows: np.ndarray, t: np.ndarray, pos: np.ndarray, fs: float, w: int, onset_speed: float,
-                   min_samples: int) -> None:
+def _segment_block(
+    out: dict[str, np.ndarray],
+    seg_speed: dict[int, np.ndarray],
+    trials: np.ndarray,
+    rows: np.ndarray,
+    t: np.ndarray,
+    pos: np.ndarray,
+    fs: float,
+    w: int,
+    onset_speed: float,
+    min_samples: int,
+) -> None:
     """Trials whose approaches have the same length c (``rows``: (K, c) rows of the approaches)."""
     c = rows.shape[1]
     vel = savgol_filter(pos[rows], w, polyorder=2, deriv=1, delta=1.0 / fs, axis=1, mode="interp")
@@ -151,7 +179,7 @@ def _segment_block(out: dict[str, np.ndarray], seg_speed: dict[int, np.ndarray],
     out["t_onset"][i] = t[rows[ok, 0] + o]
     out["t_contact"][i] = t[rows[ok, 0] + c]
     for k, trial in enumerate(i):
-        seg_speed[int(trial)] = sp[k, o[k]:]
+        seg_speed[int(trial)] = sp[k, o[k] :]
 
 
 def _ldlj_by_length(out: dict[str, np.ndarray], seg_speed: dict[int, np.ndarray], fs: float) -> None:
@@ -168,8 +196,14 @@ def _ldlj_by_length(out: dict[str, np.ndarray], seg_speed: dict[int, np.ndarray]
         out["ldlj"][trials] = smoothness.ldlj_rows(np.stack([seg_speed[i] for i in trials]), fs)
 
 
-def rest_noise_estimates(pos: np.ndarray, runs: Runs, approach_len: np.ndarray, which: np.ndarray, fs: float,
-                         separate: Mapping[int, np.ndarray] | None = None) -> np.ndarray:
+def rest_noise_estimates(
+    pos: np.ndarray,
+    runs: Runs,
+    approach_len: np.ndarray,
+    which: np.ndarray,
+    fs: float,
+    separate: Mapping[int, np.ndarray] | None = None,
+) -> np.ndarray:
     """The per-trial estimates (m) whose median is :func:`skilllib.features.rest_noise`, of the
     approaches of the ``which`` trials long enough for it: the first ``approach_len[i]`` rows of run
     ``i`` of ``pos`` (R, 3) m, or ``separate[i]`` (the approach's positions, for resampled trials)."""
@@ -177,15 +211,26 @@ def rest_noise_estimates(pos: np.ndarray, runs: Runs, approach_len: np.ndarray, 
     separate = dict(separate or {})
     use = np.asarray(which, bool) & (approach_len >= n)
     use[list(separate)] = False
-    est = [np.median(np.abs(np.diff(pos[rows], 4, axis=1)).reshape(len(trials), -1), axis=1) / REST_NOISE_SCALE
-           for trials, rows in runs.blocks(use, length=np.full(len(runs), n))]
-    est += [np.array([np.median(np.abs(np.diff(a[:n], 4, axis=0))) / REST_NOISE_SCALE])
-            for a in separate.values() if len(a) >= n]
+    est = [
+        np.median(np.abs(np.diff(pos[rows], 4, axis=1)).reshape(len(trials), -1), axis=1) / REST_NOISE_SCALE
+        for trials, rows in runs.blocks(use, length=np.full(len(runs), n))
+    ]
+    est += [
+        np.array([np.median(np.abs(np.diff(a[:n], 4, axis=0))) / REST_NOISE_SCALE])
+        for a in separate.values()
+        if len(a) >= n
+    ]
     return np.concatenate(est) if est else np.empty(0)
 
 
-def rest_noise_many(pos: np.ndarray, runs: Runs, approach_len: np.ndarray, which: np.ndarray, fs: float,
-                    separate: Mapping[int, np.ndarray] | None = None) -> float:
+def rest_noise_many(
+    pos: np.ndarray,
+    runs: Runs,
+    approach_len: np.ndarray,
+    which: np.ndarray,
+    fs: float,
+    separate: Mapping[int, np.ndarray] | None = None,
+) -> float:
     """:func:`skilllib.features.rest_noise` (m) of the approaches of the ``which`` trials (the median of
     :func:`rest_noise_estimates`; 0 when no approach is long enough): the same value."""
     est = rest_noise_estimates(pos, runs, approach_len, which, fs, separate)

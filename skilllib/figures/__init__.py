@@ -6,6 +6,7 @@ Every function takes data (arrays, DataFrames, result objects) and returns a mat
 ``dynamics`` (accelerations, torques, execution, time scales), ``scale`` (time and memory against N).
 This package may import the other skilllib modules; none of them imports it.
 """
+
 from __future__ import annotations
 
 import matplotlib.pyplot as plt
@@ -54,15 +55,42 @@ from .scale import plot_scaling
 from .smoothness import plot_sparc_against, plot_sparc_spectra, plot_speeds_and_spectra
 
 __all__ = [
-    "plt", "save", "CLUSTER_COLORS", "PARTICIPANT_COLORS", "JOINT_COLORS", "few_participants",
+    "plt",
+    "save",
+    "CLUSTER_COLORS",
+    "PARTICIPANT_COLORS",
+    "JOINT_COLORS",
+    "few_participants",
     "MAX_FIGURE_PARTICIPANTS",
-    "plot_sparc_spectra", "plot_speeds_and_spectra", "plot_sparc_against",
-    "plot_trials_by_participant", "plot_segmentation", "plot_participant_features", "plot_contact_speeds",
-    "plot_feature_space", "plot_feature_overview", "plot_estimates_vs_truth", "plot_sparc_vs_length",
-    "threshold_bound", "plot_silhouette_sweep", "plot_silhouettes", "plot_clusters", "plot_prototype_profiles",
-    "plot_stability", "plot_sparc_sensitivity", "plot_cluster_participants",
-    "plot_robot_joints", "plot_robot_pose", "plot_simple6_figure", "plot_start_poses",
-    "plot_joint_velocities", "plot_frame_mapping",
-    "plot_joint_accelerations", "plot_joint_torques", "plot_executed_speed", "plot_time_scales", "dynamics_figures",
+    "plot_sparc_spectra",
+    "plot_speeds_and_spectra",
+    "plot_sparc_against",
+    "plot_trials_by_participant",
+    "plot_segmentation",
+    "plot_participant_features",
+    "plot_contact_speeds",
+    "plot_feature_space",
+    "plot_feature_overview",
+    "plot_estimates_vs_truth",
+    "plot_sparc_vs_length",
+    "threshold_bound",
+    "plot_silhouette_sweep",
+    "plot_silhouettes",
+    "plot_clusters",
+    "plot_prototype_profiles",
+    "plot_stability",
+    "plot_sparc_sensitivity",
+    "plot_cluster_participants",
+    "plot_robot_joints",
+    "plot_robot_pose",
+    "plot_simple6_figure",
+    "plot_start_poses",
+    "plot_joint_velocities",
+    "plot_frame_mapping",
+    "plot_joint_accelerations",
+    "plot_joint_torques",
+    "plot_executed_speed",
+    "plot_time_scales",
+    "dynamics_figures",
     "plot_scaling",
 ]

@@ -1,4 +1,5 @@
 """Shared parts of the figures: colours and :func:`save` (PNG and SVG)."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -18,8 +19,9 @@ def save(fig: plt.Figure, out_dir: str | Path, name: str, dpi: int = 150) -> lis
     plot holding more than :data:`DENSE` points in all (a corpus of 10^5 trials) has its data layers
     rasterized at ``dpi``, so that the file stays small (axes, text and sparse layers stay vectors)."""
     for ax in fig.axes:
-        layers = [(c, max(len(c.get_offsets()), sum(len(p.vertices) for p in c.get_paths())))
-                  for c in ax.collections] + [(line, len(line.get_xdata())) for line in ax.lines]
+        layers = [
+            (c, max(len(c.get_offsets()), sum(len(p.vertices) for p in c.get_paths()))) for c in ax.collections
+        ] + [(line, len(line.get_xdata())) for line in ax.lines]
         if sum(n for _, n in layers) > DENSE:  # the axes' data layers as one image; reference lines stay vectors
             for artist, n in layers:
                 artist.set_rasterized(n > 100)
@@ -29,4 +31,3 @@ def save(fig: plt.Figure, out_dir: str | Path, name: str, dpi: int = 150) -> lis
     fig.savefig(paths[0], dpi=dpi, bbox_inches="tight")
     fig.savefig(paths[1], bbox_inches="tight", metadata={"Date": None})
     return paths
-

@@ -1,12 +1,12 @@
 """Figures of the clustering chapter: silhouette sweep, silhouette plots, clusters, prototypes."""
+
 from __future__ import annotations
 
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
-from ..prototypes import PrototypeResult, SilhouetteSweep
-from ..prototypes import SparcSensitivity
+from ..prototypes import PrototypeResult, SilhouetteSweep, SparcSensitivity
 from ._common import CLUSTER_COLORS
 
 
@@ -25,14 +25,34 @@ def plot_silhouette_sweep(sweep: SilhouetteSweep, chosen_k: int | None = None) -
     ax.plot(ks, scores, color="0.6", lw=1, zorder=1)
     est = [sweep.results[k].silhouette_estimate for k in ks]
     if all(e is not None for e in est):
-        ax.errorbar(ks, scores, yerr=[e.sd for e in est], fmt="none", ecolor="0.4", lw=1, capsize=2, zorder=1,
-                    label=f"estimate: ± 1 SD over {est[0].repeats} subsamples of {est[0].sample_size} trials")
+        ax.errorbar(
+            ks,
+            scores,
+            yerr=[e.sd for e in est],
+            fmt="none",
+            ecolor="0.4",
+            lw=1,
+            capsize=2,
+            zorder=1,
+            label=f"estimate: ± 1 SD over {est[0].repeats} subsamples of {est[0].sample_size} trials",
+        )
     ax.scatter(ks[valid], scores[valid], color="k", zorder=2, label="valid")
-    ax.scatter(ks[~valid], scores[~valid], facecolor="white", edgecolor="k", zorder=2,
-               label="not valid: a cluster lies wholly below the average")
+    ax.scatter(
+        ks[~valid],
+        scores[~valid],
+        facecolor="white",
+        edgecolor="k",
+        zorder=2,
+        label="not valid: a cluster lies wholly below the average",
+    )
     if chosen_k is not None and chosen_k in sweep.results:
-        ax.axvline(chosen_k, color=CLUSTER_COLORS[3], ls="--", lw=1,
-                   label=f"k = {chosen_k} (average {sweep.results[chosen_k].silhouette:.3f})")
+        ax.axvline(
+            chosen_k,
+            color=CLUSTER_COLORS[3],
+            ls="--",
+            lw=1,
+            label=f"k = {chosen_k} (average {sweep.results[chosen_k].silhouette:.3f})",
+        )
     ax.set_xticks(ks)
     ax.set_xlabel("number of clusters k")
     ax.set_ylabel("average silhouette")
@@ -53,8 +73,14 @@ def plot_silhouettes(result: PrototypeResult) -> plt.Figure:
     for c in range(result.k):
         sc = np.sort(s[labels == c])
         ax.fill_betweenx(np.arange(y0, y0 + len(sc)), 0, sc, color=_cluster_color(c), lw=0)
-        ax.text(-0.02, y0 + len(sc) / 2, f"{c}*" if c in failing else str(c), ha="right", va="center",
-                fontsize="small" if result.k <= 10 else "x-small")
+        ax.text(
+            -0.02,
+            y0 + len(sc) / 2,
+            f"{c}*" if c in failing else str(c),
+            ha="right",
+            va="center",
+            fontsize="small" if result.k <= 10 else "x-small",
+        )
         y0 += len(sc) + gap
     ax.axvline(avg, color="k", ls="--", lw=1)
     ax.axvline(0, color="0.5", lw=0.5)
@@ -62,12 +88,17 @@ def plot_silhouettes(result: PrototypeResult) -> plt.Figure:
     ax.set_ylim(0, y0)
     ax.set_yticks([])
     ax.set_xlabel("silhouette coefficient")
-    ax.set_ylabel("trials, by cluster (0 = lowest PV)" if est is None else
-                  f"sampled trials ({est.repeats} x {est.sample_size} of {est.n_points}), by cluster")
+    ax.set_ylabel(
+        "trials, by cluster (0 = lowest PV)"
+        if est is None
+        else f"sampled trials ({est.repeats} x {est.sample_size} of {est.n_points}), by cluster"
+    )
     note = "; * no trial above it" if failing else ""
     how = "dashed" if est is None else f"dashed; estimate, SD {est.sd:.3f}"
-    ax.set_title(f"k = {result.k} ({result.method}, {result.scaling} features): "
-                 f"average {avg:.3f} ({how}){note}", fontsize="small")
+    ax.set_title(
+        f"k = {result.k} ({result.method}, {result.scaling} features): average {avg:.3f} ({how}){note}",
+        fontsize="small",
+    )
     return fig
 
 
@@ -78,20 +109,47 @@ def plot_clusters(result: PrototypeResult) -> plt.Figure:
     fig, ax = plt.subplots(figsize=(5.5, 4))
     for c in range(result.k):
         m = d["cluster"].to_numpy() == c
-        ax.scatter(d.loc[m, "pv"], d.loc[m, "sparc"], s=10, alpha=0.6, color=_cluster_color(c), lw=0,
-                   label=f"cluster {c} (n = {int(result.sizes[c])})")
-    ax.scatter(result.centres["pv"], result.centres["sparc"], marker="X", s=90, color="k",
-               edgecolor="white", lw=0.8, label="centre", zorder=3)
-    ax.scatter(result.prototypes["pv"], result.prototypes["sparc"], marker="o", s=110, facecolor="none",
-               edgecolor="k", lw=1.5, label="prototype (trial nearest the centre)", zorder=4)
+        ax.scatter(
+            d.loc[m, "pv"],
+            d.loc[m, "sparc"],
+            s=10,
+            alpha=0.6,
+            color=_cluster_color(c),
+            lw=0,
+            label=f"cluster {c} (n = {int(result.sizes[c])})",
+        )
+    ax.scatter(
+        result.centres["pv"],
+        result.centres["sparc"],
+        marker="X",
+        s=90,
+        color="k",
+        edgecolor="white",
+        lw=0.8,
+        label="centre",
+        zorder=3,
+    )
+    ax.scatter(
+        result.prototypes["pv"],
+        result.prototypes["sparc"],
+        marker="o",
+        s=110,
+        facecolor="none",
+        edgecolor="k",
+        lw=1.5,
+        label="prototype (trial nearest the centre)",
+        zorder=4,
+    )
     ax.set_xlabel("peak speed PV (m/s)")
     ax.set_ylabel("SPARC")
     ax.legend(fontsize="x-small", frameon=False, loc="center left", bbox_to_anchor=(1.01, 0.5))
     return fig
 
 
-def plot_prototype_profiles(profiles: list[tuple[np.ndarray, np.ndarray]], prototypes: pd.DataFrame,
-                            ) -> plt.Figure:
+def plot_prototype_profiles(
+    profiles: list[tuple[np.ndarray, np.ndarray]],
+    prototypes: pd.DataFrame,
+) -> plt.Figure:
     """Speed profiles of the prototypes labelled with their PV and SPARC: the paper's Fig. 2b.
 
     ``profiles[i]`` is (t in s, speed in m/s) of the prototype of cluster i, in the row order of
@@ -101,8 +159,13 @@ def plot_prototype_profiles(profiles: list[tuple[np.ndarray, np.ndarray]], proto
         raise ValueError(f"{len(profiles)} speed profiles for {len(prototypes)} prototypes")
     fig, ax = plt.subplots(figsize=(5.5, 3.6))
     for (c, p), (t, v) in zip(prototypes.iterrows(), profiles):
-        ax.plot(np.asarray(t), np.asarray(v), color=_cluster_color(c), lw=1.6,
-                label=f"cluster {c}: PV = {p['pv']:.2f} m/s, SPARC = {p['sparc']:.2f}")
+        ax.plot(
+            np.asarray(t),
+            np.asarray(v),
+            color=_cluster_color(c),
+            lw=1.6,
+            label=f"cluster {c}: PV = {p['pv']:.2f} m/s, SPARC = {p['sparc']:.2f}",
+        )
     ax.set_xlabel("time (s)")
     ax.set_ylabel("speed (m/s)")
     ax.set_ylim(bottom=0)
@@ -139,8 +202,15 @@ def plot_sparc_sensitivity(sens: SparcSensitivity) -> plt.Figure:
         y = run.selected["sparc"].to_numpy()
         cap = run.selected["sparc_capped"].to_numpy(dtype=bool)
         a.scatter(ref[~cap], y[~cap], s=6, color=_cluster_color(i), label=f"{run.label}: band ended by amp_th")
-        a.scatter(ref[cap], y[cap], s=12, facecolor="none", edgecolor=_cluster_color(i), lw=0.7,
-                  label=f"{run.label}: band ended by fc ({int(cap.sum())})")
+        a.scatter(
+            ref[cap],
+            y[cap],
+            s=12,
+            facecolor="none",
+            edgecolor=_cluster_color(i),
+            lw=0.7,
+            label=f"{run.label}: band ended by fc ({int(cap.sum())})",
+        )
     lo = min(ref.min(), *(r.selected["sparc"].min() for r in sens.runs))
     hi = max(ref.max(), *(r.selected["sparc"].max() for r in sens.runs))
     a.plot([lo, hi], [lo, hi], "--", color="0.4", lw=0.8)

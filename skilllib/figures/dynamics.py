@@ -1,5 +1,6 @@
 """Figures of the transfer to an arm with dynamics: joint accelerations and torques against their limits,
 commanded against executed tool speed, the time scale every limit asks for."""
+
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
@@ -7,8 +8,7 @@ from collections.abc import Callable, Mapping, Sequence
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ..robot import LIMIT_NAMES, JointDynamics
-from ..robot import Assessment
+from ..robot import LIMIT_NAMES, Assessment, JointDynamics
 from ..smoothness import sparc
 from .robot import JOINT_COLORS
 
@@ -31,10 +31,18 @@ def _title(d: JointDynamics, i: int, titles: Sequence[str] | None) -> str:
     return titles[i] if titles else (f"cluster {r.cluster}" if r.cluster is not None else f"trajectory {i}")
 
 
-def _joint_figure(dyns: Sequence[JointDynamics], series: Callable[[JointDynamics], np.ndarray],
-                  limits: Callable[[JointDynamics], np.ndarray | None], ylabel: str, unit: str,
-                  describe: Callable[[JointDynamics], str], suptitle: str, titles: Sequence[str] | None,
-                  ncols: int, extra: Callable[[plt.Axes, JointDynamics], None] | None = None) -> plt.Figure:
+def _joint_figure(
+    dyns: Sequence[JointDynamics],
+    series: Callable[[JointDynamics], np.ndarray],
+    limits: Callable[[JointDynamics], np.ndarray | None],
+    ylabel: str,
+    unit: str,
+    describe: Callable[[JointDynamics], str],
+    suptitle: str,
+    titles: Sequence[str] | None,
+    ncols: int,
+    extra: Callable[[plt.Axes, JointDynamics], None] | None = None,
+) -> plt.Figure:
     """One panel per trajectory: a quantity per joint against time with +-its limits (dashed)."""
     if not dyns:
         raise ValueError("the figure needs at least one JointDynamics")
@@ -50,9 +58,13 @@ def _joint_figure(dyns: Sequence[JointDynamics], series: Callable[[JointDynamics
                 joints = np.nonzero(lim == value)[0] + 1
                 who = "" if joints.size == y.shape[1] else " ($q_{" + ",".join(str(j) for j in joints) + "}$)"
                 for sgn in (1, -1):
-                    ax.axhline(sgn * value, color=("k", "0.45", "0.7")[g % 3], ls=("--", "-.", ":")[g % 3], lw=0.9,
-                               label=(f"limit ±{value:.4g}" + ("" if unit == "1" else f" {unit}") + who)
-                               if sgn > 0 else None)
+                    ax.axhline(
+                        sgn * value,
+                        color=("k", "0.45", "0.7")[g % 3],
+                        ls=("--", "-.", ":")[g % 3],
+                        lw=0.9,
+                        label=(f"limit ±{value:.4g}" + ("" if unit == "1" else f" {unit}") + who) if sgn > 0 else None,
+                    )
         if extra is not None:
             extra(ax, d)
         ax.axhline(0, color="0.7", lw=0.5)
@@ -65,19 +77,28 @@ def _joint_figure(dyns: Sequence[JointDynamics], series: Callable[[JointDynamics
     handles, labels = axs.flat[0].get_legend_handles_labels()
     width = fig.get_figwidth()
     per_row = min(len(labels), int(width / 1.1))
-    fig.legend(handles, labels, loc="upper center", ncol=per_row, frameon=False,
-               bbox_to_anchor=(0.5, 1 - 0.3 / height), fontsize="small")
+    fig.legend(
+        handles,
+        labels,
+        loc="upper center",
+        ncol=per_row,
+        frameon=False,
+        bbox_to_anchor=(0.5, 1 - 0.3 / height),
+        fontsize="small",
+    )
     fig.suptitle(suptitle, y=0.995, fontsize="medium")
     rows = -(-len(labels) // per_row)
     fig.tight_layout(rect=(0, 0, 1, 1 - (0.3 + 0.2 * rows) / height))
     return fig
 
 
-def plot_joint_accelerations(dyns: Sequence[JointDynamics], titles: Sequence[str] | None = None,
-                             ncols: int = 3) -> plt.Figure:
+def plot_joint_accelerations(
+    dyns: Sequence[JointDynamics], titles: Sequence[str] | None = None, ncols: int = 3
+) -> plt.Figure:
     """Joint accelerations qdd_j(t) (rad/s^2) of each trajectory against time (s), one panel each, with the
     acceleration limits dashed (when the arm has them); the title gives the peak and the stretch s_a the
     limits ask for alone. qdd = J^+ (a - Jdot qd) (+ the pseudo-inverse's null-space term; skilllib.robot)."""
+
     def describe(d: JointDynamics) -> str:
         s_a = d.time_scales()["acceleration"]
         peak = np.nanmax(d.peak_abs_qdd)
@@ -85,12 +106,22 @@ def plot_joint_accelerations(dyns: Sequence[JointDynamics], titles: Sequence[str
 
     if not dyns:
         raise ValueError("plot_joint_accelerations needs at least one JointDynamics")
-    return _joint_figure(dyns, lambda d: d.qdd, lambda d: d.qdd_limits, "joint acceleration", "rad/s²", describe,
-                         f"{dyns[0].transfer.robot}: joint accelerations", titles, ncols)
+    return _joint_figure(
+        dyns,
+        lambda d: d.qdd,
+        lambda d: d.qdd_limits,
+        "joint acceleration",
+        "rad/s²",
+        describe,
+        f"{dyns[0].transfer.robot}: joint accelerations",
+        titles,
+        ncols,
+    )
 
 
-def plot_joint_torques(dyns: Sequence[JointDynamics], titles: Sequence[str] | None = None,
-                       ncols: int = 3) -> plt.Figure:
+def plot_joint_torques(
+    dyns: Sequence[JointDynamics], titles: Sequence[str] | None = None, ncols: int = 3
+) -> plt.Figure:
     """Joint torques tau_j(t) (roboticstoolbox ``rne``: rigid body, motor inertia, friction) of each
     trajectory against time (s), each divided by its joint's torque limit (so that +-1, dashed, is the
     limit of every joint); thin dotted lines: the same path traversed very slowly (gravity and Coulomb
@@ -114,14 +145,23 @@ def plot_joint_torques(dyns: Sequence[JointDynamics], titles: Sequence[str] | No
         for j in range(rest.shape[1]):
             ax.plot(t, rest[:, j], color=JOINT_COLORS[j % len(JOINT_COLORS)], lw=0.9, ls=":")
 
-    return _joint_figure(dyns, lambda d: norm(d, d.tau), lambda d: np.ones(d.tau.shape[1]) if limited else None,
-                         "joint torque / its limit" if limited else "joint torque", "1" if limited else "N m",
-                         describe, f"{dyns[0].transfer.robot}: joint torques (dotted: the same path at rest speed)",
-                         titles, ncols, extra=slow)
+    return _joint_figure(
+        dyns,
+        lambda d: norm(d, d.tau),
+        lambda d: np.ones(d.tau.shape[1]) if limited else None,
+        "joint torque / its limit" if limited else "joint torque",
+        "1" if limited else "N m",
+        describe,
+        f"{dyns[0].transfer.robot}: joint torques (dotted: the same path at rest speed)",
+        titles,
+        ncols,
+        extra=slow,
+    )
 
 
-def plot_executed_speed(assessments: Sequence[Assessment], titles: Sequence[str] | None = None,
-                        ncols: int = 3) -> plt.Figure:
+def plot_executed_speed(
+    assessments: Sequence[Assessment], titles: Sequence[str] | None = None, ncols: int = 3
+) -> plt.Figure:
     """Commanded and executed tool speed (m/s) against time (s), one panel per prototype: the prototype's
     speed at its samples (black dots), the simulated execution as recorded (coloured, controller rate) and
     the execution slowed by the time scale s of every limit, drawn on the recorded time axis (t / s) with its
@@ -142,13 +182,21 @@ def plot_executed_speed(assessments: Sequence[Assessment], titles: Sequence[str]
             parts.append(f"exec. {e.sparc:.3f}")
         if es is not None and es.time_scale > 1:
             s = es.time_scale
-            ax.plot((es.t - t0) / s, es.speed * s, color="#4C72B0", lw=1.4, ls="--",
-                    label="executed slowed by s (t / s, speed × s)")
+            ax.plot(
+                (es.t - t0) / s,
+                es.speed * s,
+                color="#4C72B0",
+                lw=1.4,
+                ls="--",
+                label="executed slowed by s (t / s, speed × s)",
+            )
             parts.append(f"slowed {es.sparc:.3f}")
         fs = (len(r.t) - 1) / (r.t[-1] - r.t[0]) if len(r.t) > 1 else np.nan
         proto = sparc(speed, fs) if len(r.t) > 1 else np.nan
         scale = a.dynamics.time_scale
-        head = f"{_title(a.dynamics, i, titles)}, s = {scale:.2f}" if np.isfinite(scale) else _title(a.dynamics, i, titles)
+        head = (
+            f"{_title(a.dynamics, i, titles)}, s = {scale:.2f}" if np.isfinite(scale) else _title(a.dynamics, i, titles)
+        )
         ax.set_title(f"{head}\nSPARC {proto:.3f}; " + "; ".join(parts), fontsize="small")
         ax.grid(alpha=0.3)
     for ax in axs[-1]:
@@ -161,8 +209,15 @@ def plot_executed_speed(assessments: Sequence[Assessment], titles: Sequence[str]
             if lab not in labels:
                 handles.append(h)
                 labels.append(lab)
-    fig.legend(handles, labels, loc="upper center", ncol=len(labels), frameon=False,
-               bbox_to_anchor=(0.5, 1 - 0.3 / height), fontsize="small")
+    fig.legend(
+        handles,
+        labels,
+        loc="upper center",
+        ncol=len(labels),
+        frameon=False,
+        bbox_to_anchor=(0.5, 1 - 0.3 / height),
+        fontsize="small",
+    )
     fig.suptitle(f"{assessments[0].transfer.robot}: commanded and executed tool speed", y=0.995, fontsize="medium")
     fig.tight_layout(rect=(0, 0, 1, 1 - 0.55 / height))
     return fig
@@ -199,8 +254,15 @@ def plot_time_scales(by_arm: Mapping[str, Sequence[JointDynamics]]) -> plt.Figur
         for m, name in enumerate(LIMIT_NAMES):
             vals = np.array([np.nan if (v := d.time_scales()[name]) is None else v for d in dyns], dtype=float)
             if np.isfinite(vals).any():
-                ax.plot(x + (m - 1) * 0.18, vals, markers[name], color=LIMIT_COLORS[name], ms=6,
-                        label=f"{name} alone", zorder=3)
+                ax.plot(
+                    x + (m - 1) * 0.18,
+                    vals,
+                    markers[name],
+                    color=LIMIT_COLORS[name],
+                    ms=6,
+                    label=f"{name} alone",
+                    zorder=3,
+                )
                 top = max(top, np.nanmax(vals[np.isfinite(vals)]))
         for xi, d in zip(x, dyns):
             s = d.time_scale
@@ -209,8 +271,7 @@ def plot_time_scales(by_arm: Mapping[str, Sequence[JointDynamics]]) -> plt.Figur
                 if d.binding_limit:
                     ax.text(xi, s + 0.04, d.binding_limit[:3] + ".", ha="center", va="bottom", fontsize="x-small")
         ax.axhline(1, color="0.5", lw=0.8, ls="--")
-        ax.set_xticks(x, [str(d.transfer.cluster if d.transfer.cluster is not None else i)
-                          for i, d in enumerate(dyns)])
+        ax.set_xticks(x, [str(d.transfer.cluster if d.transfer.cluster is not None else i) for i, d in enumerate(dyns)])
         ax.set_xlabel("cluster", fontsize="small")
         ax.set_title(arm, fontsize="medium")
         ax.grid(alpha=0.3, axis="y")

@@ -1,4 +1,5 @@
 """Figures of the experiment and its data: trajectories, segmentation, per-participant features."""
+
 from __future__ import annotations
 
 from typing import Any
@@ -8,8 +9,8 @@ import numpy as np
 import pandas as pd
 from matplotlib.collections import LineCollection
 
-from ..recordings import Recordings, sort_ids
 from ..features import CONTACT_WINDOW, ONSET_SPEED, velocity
+from ..recordings import Recordings, sort_ids
 from ..smoothness import DEFAULT_AMP_TH
 
 #: Colours of the participants (in sorted participant order): tab10 with its grey replaced by black,
@@ -49,8 +50,9 @@ def few_participants(features: pd.DataFrame, most: int = MAX_FIGURE_PARTICIPANTS
     return kept, f"the first {most} of {len(parts)} participants (by id)"
 
 
-def plot_trials_by_participant(recordings: Recordings, features: pd.DataFrame,
-                               window: tuple[float, float] = (-0.9, 0.3)) -> plt.Figure:
+def plot_trials_by_participant(
+    recordings: Recordings, features: pd.DataFrame, window: tuple[float, float] = (-0.9, 0.3)
+) -> plt.Figure:
     """The paper's Fig. 1b redrawn: vertical position y (m) and speed (m/s, approach only) of every valid
     trial against time from contact (s), one column per participant (two rows of participants).
     Selected trials in the participant's colour, excluded ones in grey."""
@@ -126,14 +128,17 @@ def plot_participant_features(features: pd.DataFrame) -> plt.Figure:
     and SPARC of every valid trial (box: quartiles; points: trials, selected in colour)."""
     f = features[features["status"] != "invalid"]
     parts = sort_ids(f["participant"].unique())
-    cols = [("pv", "peak speed PV (m/s)"), ("contact_speed", "contact speed (m/s)"),
-            ("duration", "duration onset-contact (s)"), ("sparc", "SPARC")]
+    cols = [
+        ("pv", "peak speed PV (m/s)"),
+        ("contact_speed", "contact speed (m/s)"),
+        ("duration", "duration onset-contact (s)"),
+        ("sparc", "SPARC"),
+    ]
     fig, axs = plt.subplots(len(cols), 1, figsize=(7.5, 8), sharex=True)
     rng = np.random.default_rng(0)  # horizontal jitter of the points only
     for ax, (c, label) in zip(axs, cols):
         data = [f.loc[f["participant"] == p, c].to_numpy() for p in parts]
-        ax.boxplot(data, positions=range(len(parts)), widths=0.5, showfliers=False,
-                   medianprops={"color": "k"})
+        ax.boxplot(data, positions=range(len(parts)), widths=0.5, showfliers=False, medianprops={"color": "k"})
         for i, p in enumerate(parts):
             g = f[f["participant"] == p]
             x = i + rng.uniform(-0.18, 0.18, len(g))
@@ -155,8 +160,13 @@ def plot_contact_speeds(features: pd.DataFrame, bin_width: float = 0.05, ax: plt
     n_sel = int((features["status"] == "selected").sum())
     fig, ax = plt.subplots(figsize=(5.5, 3.2)) if ax is None else (ax.figure, ax)
     ax.hist(v, bins=np.arange(0, v.max() + bin_width, bin_width), color="0.55")
-    ax.axvspan(*CONTACT_WINDOW, color="tab:green", alpha=0.15, lw=0,
-               label=f"selected: {CONTACT_WINDOW[0]:g}-{CONTACT_WINDOW[1]:g} m/s ({n_sel} trials)")
+    ax.axvspan(
+        *CONTACT_WINDOW,
+        color="tab:green",
+        alpha=0.15,
+        lw=0,
+        label=f"selected: {CONTACT_WINDOW[0]:g}-{CONTACT_WINDOW[1]:g} m/s ({n_sel} trials)",
+    )
     ax.set_xlabel("contact speed (m/s)")
     ax.set_ylabel("trials")
     ax.legend(frameon=False, fontsize=8)
@@ -174,14 +184,29 @@ def _mark_capped(ax: plt.Axes, f: pd.DataFrame, x: str, amp_th: float) -> None:
     if "sparc_capped" in f.columns:
         cap = f[f["sparc_capped"].fillna(False).astype(bool)]
         many = len(cap) > 2_000  # a corpus: faint rings, or they hide every point
-        ax.scatter(cap[x], cap["sparc"], s=16, facecolor="none", edgecolor="k", lw=0.3 if many else 0.5,
-                   alpha=0.15 if many else 1.0, label=f"band ended by fc ({len(cap)})", zorder=4)
-    ax.axhline(threshold_bound(amp_th), color="0.3", ls="--", lw=0.8,
-               label=f"highest SPARC of a band ended by amp_th = {amp_th:g}")
+        ax.scatter(
+            cap[x],
+            cap["sparc"],
+            s=16,
+            facecolor="none",
+            edgecolor="k",
+            lw=0.3 if many else 0.5,
+            alpha=0.15 if many else 1.0,
+            label=f"band ended by fc ({len(cap)})",
+            zorder=4,
+        )
+    ax.axhline(
+        threshold_bound(amp_th),
+        color="0.3",
+        ls="--",
+        lw=0.8,
+        label=f"highest SPARC of a band ended by amp_th = {amp_th:g}",
+    )
 
 
-def plot_feature_space(features: pd.DataFrame, ax: plt.Axes | None = None,
-                       amp_th: float = DEFAULT_AMP_TH) -> plt.Figure:
+def plot_feature_space(
+    features: pd.DataFrame, ax: plt.Axes | None = None, amp_th: float = DEFAULT_AMP_TH
+) -> plt.Figure:
     """Peak speed PV (m/s) against SPARC: selected trials coloured by participant, excluded in grey;
     trials whose SPARC band the maximum cut-off fc ended (``sparc_capped``) ringed, and the dashed line
     :func:`threshold_bound` above which only such trials can lie."""
@@ -248,8 +273,9 @@ def plot_estimates_vs_truth(features: pd.DataFrame, truth: pd.DataFrame) -> plt.
     m = features[features["status"] != "invalid"].merge(truth, on=["participant", "trial"], suffixes=("", "_true"))
     m = m.assign(duration_true=m["t_contact_true"] - m["t_onset_true"])
     fig, axs = plt.subplots(1, 3, figsize=(10, 3.3))
-    for ax, (c, label) in zip(axs, [("pv", "PV (m/s)"), ("contact_speed", "contact speed (m/s)"),
-                                    ("duration", "duration (s)")]):
+    for ax, (c, label) in zip(
+        axs, [("pv", "PV (m/s)"), ("contact_speed", "contact speed (m/s)"), ("duration", "duration (s)")]
+    ):
         ax.scatter(m[f"{c}_true"], m[c], s=3, color="0.35")
         lim = [0, max(m[c].max(), m[f"{c}_true"].max()) * 1.05]
         ax.plot(lim, lim, "--", color="tab:red", lw=0.8)

@@ -1,4 +1,5 @@
 """Figures of the transfer chapter: the robot, the frame mapping, joint velocities."""
+
 from __future__ import annotations
 
 import matplotlib.pyplot as plt
@@ -9,9 +10,7 @@ from matplotlib.ticker import MaxNLocator
 with plt.rc_context():  # roboticstoolbox's PyPlot backend sets the ggplot style globally on import;
     import roboticstoolbox.backends.PyPlot.PyPlot  # noqa: F401  the context undoes that.
 
-from ..robot import DEFAULT_POSE_DEG, default_pose, joint_origins, simple6
-from ..robot import EXP_TO_BASE, TransferResult
-
+from ..robot import DEFAULT_POSE_DEG, EXP_TO_BASE, TransferResult, default_pose, joint_origins, simple6
 
 #: Colours of the joints q1..q7 in the transfer figures.
 JOINT_COLORS = plt.get_cmap("Dark2").colors
@@ -54,8 +53,16 @@ def _label_joints(ax: plt.Axes, robot: rtb.DHRobot, q: np.ndarray, length: float
     for j, (p, a) in enumerate(zip(pos, axes)):
         c = JOINT_COLORS[j % len(JOINT_COLORS)]
         ax.quiver(*p, *(a * length), color=c, lw=2.2, arrow_length_ratio=0.18)
-        ax.text(*(p + a * length * 1.38), f"$q_{j + 1}$", color=c, fontsize=13, ha="center", va="center",
-                zorder=20, bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
+        ax.text(
+            *(p + a * length * 1.38),
+            f"$q_{j + 1}$",
+            color=c,
+            fontsize=13,
+            ha="center",
+            va="center",
+            zorder=20,
+            bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8),
+        )
 
 
 def _label_tool_frame(ax: plt.Axes, T: np.ndarray, length: float) -> None:
@@ -63,12 +70,24 @@ def _label_tool_frame(ax: plt.Axes, T: np.ndarray, length: float) -> None:
     for k, (name, c) in enumerate((("x", "#d62728"), ("y", "#2ca02c"), ("z", "#1f77b4"))):
         a = T[:3, k] * length
         ax.quiver(*T[:3, 3], *a, color=c, lw=2.2, arrow_length_ratio=0.18)
-        ax.text(*(T[:3, 3] + a * 1.38), f"${name}_t$", color=c, fontsize=12, ha="center", va="center",
-                zorder=20, bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
+        ax.text(
+            *(T[:3, 3] + a * 1.38),
+            f"${name}_t$",
+            color=c,
+            fontsize=12,
+            ha="center",
+            va="center",
+            zorder=20,
+            bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8),
+        )
 
 
-def plot_robot_joints(robot: rtb.DHRobot | None = None, q: np.ndarray | None = None, ax: plt.Axes | None = None,
-                      view: tuple[float, float] = (22.0, -35.0)) -> plt.Figure:
+def plot_robot_joints(
+    robot: rtb.DHRobot | None = None,
+    q: np.ndarray | None = None,
+    ax: plt.Axes | None = None,
+    view: tuple[float, float] = (22.0, -35.0),
+) -> plt.Figure:
     """An arm (default: Simple6 at the paper's default pose) with its joint axes labelled q1..qn:
     paper Fig. 3a.
 
@@ -90,8 +109,12 @@ def plot_robot_joints(robot: rtb.DHRobot | None = None, q: np.ndarray | None = N
     return fig
 
 
-def plot_robot_pose(robot: rtb.DHRobot | None = None, q: np.ndarray | None = None, ax: plt.Axes | None = None,
-                    view: tuple[float, float] = (18.0, -70.0)) -> plt.Figure:
+def plot_robot_pose(
+    robot: rtb.DHRobot | None = None,
+    q: np.ndarray | None = None,
+    ax: plt.Axes | None = None,
+    view: tuple[float, float] = (18.0, -70.0),
+) -> plt.Figure:
     """An arm in a pose (default: Simple6 at the paper's default pose ``DEFAULT_POSE_DEG``):
     paper Fig. 3b. The tool frame is drawn (x_t red, y_t green, z_t blue); the tool point (m) and
     the joint angles (deg) are written on the figure. Axes in m."""
@@ -106,8 +129,14 @@ def plot_robot_pose(robot: rtb.DHRobot | None = None, q: np.ndarray | None = Non
     _draw_robot(ax, robot, q, limits)
     _label_tool_frame(ax, robot.fkine(q).A, 0.25 * reach)
     ax.scatter(*tool, color="k", s=20, zorder=12, depthshade=False)
-    ax.text2D(0.02, 0.97, f"tool point ({tool[0]:.2f}, {tool[1]:.2f}, {tool[2]:.2f}) m, "
-              "tool frame $x_t, y_t, z_t$; base ▲", transform=ax.transAxes, fontsize="small", va="top")
+    ax.text2D(
+        0.02,
+        0.97,
+        f"tool point ({tool[0]:.2f}, {tool[1]:.2f}, {tool[2]:.2f}) m, tool frame $x_t, y_t, z_t$; base ▲",
+        transform=ax.transAxes,
+        fontsize="small",
+        va="top",
+    )
     ax.view_init(elev=view[0], azim=view[1])
     deg = ", ".join(f"{v:g}" for v in np.round(np.rad2deg(q), 1))
     ax.set_title(f"{robot.name} at q = ({deg}) deg", fontsize="medium")
@@ -124,13 +153,16 @@ def plot_simple6_figure() -> plt.Figure:
     plot_robot_joints(robot, q, ax=a)
     plot_robot_pose(robot, q, ax=b)
     a.set_title("(a) joint labels", fontsize="medium")
-    b.set_title("(b) default pose q = (" + ", ".join(f"{v:g}" for v in DEFAULT_POSE_DEG) + ") deg",
-                fontsize="medium")
+    b.set_title("(b) default pose q = (" + ", ".join(f"{v:g}" for v in DEFAULT_POSE_DEG) + ") deg", fontsize="medium")
     return fig
 
 
-def plot_joint_velocities(results: list[TransferResult], qd_limits: float | np.ndarray | None = None,
-                          titles: list[str] | None = None, ncols: int = 3) -> plt.Figure:
+def plot_joint_velocities(
+    results: list[TransferResult],
+    qd_limits: float | np.ndarray | None = None,
+    titles: list[str] | None = None,
+    ncols: int = 3,
+) -> plt.Figure:
     """Joint velocities qd_j(t) (rad/s) against time (s from movement start), one panel per
     transfer result (prototype/cluster): the paper's Fig. 4.
 
@@ -144,8 +176,7 @@ def plot_joint_velocities(results: list[TransferResult], qd_limits: float | np.n
     ncols = min(ncols, n_panels)
     nrows = -(-n_panels // ncols)
     width, height = max(3.6 * ncols, 7.5), 2.8 * nrows + 0.8
-    fig, axs = plt.subplots(nrows, ncols, figsize=(width, height), sharex=True, sharey=True,
-                            squeeze=False)
+    fig, axs = plt.subplots(nrows, ncols, figsize=(width, height), sharex=True, sharey=True, squeeze=False)
     for i, (ax, r) in enumerate(zip(axs.flat, results)):
         n = r.qd.shape[1]
         lim = r.qd_limits if qd_limits is None else np.broadcast_to(np.asarray(qd_limits, float), (n,))
@@ -156,16 +187,24 @@ def plot_joint_velocities(results: list[TransferResult], qd_limits: float | np.n
             joints = np.nonzero(lim == value)[0] + 1
             who = "" if joints.size == n else " ($q_{" + ",".join(str(j) for j in joints) + "}$)"
             for sgn in (1, -1):
-                ax.axhline(sgn * value, color=("k", "0.45", "0.7")[g % 3], ls=("--", "-.", ":")[g % 3], lw=0.9,
-                           label=f"limit ±{value:.4g} rad/s{who}" if sgn > 0 else None)
+                ax.axhline(
+                    sgn * value,
+                    color=("k", "0.45", "0.7")[g % 3],
+                    ls=("--", "-.", ":")[g % 3],
+                    lw=0.9,
+                    label=f"limit ±{value:.4g} rad/s{who}" if sgn > 0 else None,
+                )
         bad = sorted({f["sample"] for f in r.flags})
         if bad:
             ax.plot(t[bad], np.zeros(len(bad)), "x", color="r", ms=6, label="flagged sample")
         ax.axhline(0, color="0.7", lw=0.5)
         title = titles[i] if titles else (f"cluster {r.cluster}" if r.cluster is not None else f"trajectory {i}")
         peak = r.peak_abs_qd
-        state = "within limits" if r.feasible else (
-            f"time scale {r.time_scale:.2f}" if not r.flags else f"{len(r.flags)} flagged samples")
+        state = (
+            "within limits"
+            if r.feasible
+            else (f"time scale {r.time_scale:.2f}" if not r.flags else f"{len(r.flags)} flagged samples")
+        )
         peak_txt = f"{np.nanmax(peak):.2f}" if np.isfinite(peak).any() else "n/a"
         ax.set_title(f"{title}: max " + r"$|\dot{q}_j|$" + f" {peak_txt} rad/s, {state}", fontsize="small")
         ax.grid(alpha=0.3)
@@ -177,8 +216,15 @@ def plot_joint_velocities(results: list[TransferResult], qd_limits: float | np.n
         ax.set_ylabel("joint velocity (rad/s)")
     handles, labels = axs.flat[0].get_legend_handles_labels()
     per_row = min(len(labels), int(width / 0.95))
-    fig.legend(handles, labels, loc="upper center", ncol=per_row, frameon=False,
-               bbox_to_anchor=(0.5, 1 - 0.3 / height), fontsize="small")
+    fig.legend(
+        handles,
+        labels,
+        loc="upper center",
+        ncol=per_row,
+        frameon=False,
+        bbox_to_anchor=(0.5, 1 - 0.3 / height),
+        fontsize="small",
+    )
     law = r"$\dot{q} = J(q)^{-1} v$" if results[0].qd.shape[1] == 6 else r"$\dot{q} = J(q)^{+} v$"
     fig.suptitle(f"{results[0].robot}: joint velocities {law}", y=0.995, fontsize="medium")
     legend_rows = -(-len(labels) // per_row)
@@ -186,8 +232,12 @@ def plot_joint_velocities(results: list[TransferResult], qd_limits: float | np.n
     return fig
 
 
-def plot_frame_mapping(robot: rtb.DHRobot, result: TransferResult, rotation: np.ndarray = EXP_TO_BASE,
-                       view: tuple[float, float] = (20.0, -55.0)) -> plt.Figure:
+def plot_frame_mapping(
+    robot: rtb.DHRobot,
+    result: TransferResult,
+    rotation: np.ndarray = EXP_TO_BASE,
+    view: tuple[float, float] = (20.0, -55.0),
+) -> plt.Figure:
     """The experiment frame and the robot base frame, with the mapped path and the arm.
 
     The arm is drawn at its start pose ``result.q0`` and (grey) at the last solved sample; the
@@ -206,8 +256,18 @@ def plot_frame_mapping(robot: rtb.DHRobot, result: TransferResult, rotation: np.
     _draw_robot(ax, robot, result.q0, limits, eeframe=False)
     ok = np.nonzero(np.all(np.isfinite(result.q), axis=1))[0]
     if ok.size and ok[-1] > 0:
-        robot.plot(result.q[ok[-1]], backend="pyplot", block=False, ax=ax, limits=limits, jointaxes=False,
-                   eeframe=False, shadow=False, name=False, color="0.6")
+        robot.plot(
+            result.q[ok[-1]],
+            backend="pyplot",
+            block=False,
+            ax=ax,
+            limits=limits,
+            jointaxes=False,
+            eeframe=False,
+            shadow=False,
+            name=False,
+            color="0.6",
+        )
         _metre_labels(ax)
     x = result.x_base
     ax.plot(x[:, 0], x[:, 1], x[:, 2], color="k", lw=2.5, label="hand path (base frame)", zorder=20)
@@ -216,26 +276,47 @@ def plot_frame_mapping(robot: rtb.DHRobot, result: TransferResult, rotation: np.
     for k, name in enumerate(("x", "y", "z")):
         e = np.eye(3)[k] * L
         ax.quiver(0, 0, 0, *e, color="0.3", lw=1.5, arrow_length_ratio=0.15)
-        ax.text(*(e * 1.15), f"${name}_0$", color="0.3", fontsize=11, ha="center", va="center",
-                bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
+        ax.text(
+            *(e * 1.15),
+            f"${name}_0$",
+            color="0.3",
+            fontsize=11,
+            ha="center",
+            va="center",
+            bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8),
+        )
     exp_names = ("$x_e$ mediolateral", "$y_e$ up", "$z_e$ anteroposterior")
     for k in range(3):
         e = R[:, k] * L * 0.8
         c = JOINT_COLORS[k]
         ax.quiver(*x[0], *e, color=c, lw=2, arrow_length_ratio=0.15)
-        ax.text(*(x[0] + e * 1.2), exp_names[k], color=c, fontsize=9, ha="center", va="center",
-                bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
+        ax.text(
+            *(x[0] + e * 1.2),
+            exp_names[k],
+            color=c,
+            fontsize=9,
+            ha="center",
+            va="center",
+            bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8),
+        )
     ax.plot([], [], color="#E16F6D", lw=4, label="arm at the start pose $q_0$")
     ax.plot([], [], color="0.6", lw=4, label="arm at the last sample")
     ax.view_init(elev=view[0], azim=view[1])
     ax.set_title(f"{result.robot}: experiment frame (coloured) in the base frame (grey)", fontsize="medium")
-    fig.legend(*ax.get_legend_handles_labels(), loc="lower center", bbox_to_anchor=(0.5, 0.07), ncol=3,
-               fontsize="small", frameon=False)
+    fig.legend(
+        *ax.get_legend_handles_labels(),
+        loc="lower center",
+        bbox_to_anchor=(0.5, 0.07),
+        ncol=3,
+        fontsize="small",
+        frameon=False,
+    )
     return fig
 
 
-def plot_start_poses(arms: list[tuple[rtb.Robot, TransferResult]],
-                     view: tuple[float, float] = (20.0, -55.0)) -> plt.Figure:
+def plot_start_poses(
+    arms: list[tuple[rtb.Robot, TransferResult]], view: tuple[float, float] = (20.0, -55.0)
+) -> plt.Figure:
     """Several arms, one panel each, at their start pose ``result.q0`` with the hand path
     ``result.x_base`` (m, base frame; black) that the transfer made them follow.
 

@@ -1,5 +1,6 @@
 """The scaling figure of the chapter "At scale": wall time and peak memory of whole runs against the
 number of trials, from the measurements of ``benchmarks/bench_scale.py`` (its JSON ``rows``)."""
+
 from __future__ import annotations
 
 from collections.abc import Sequence
@@ -10,19 +11,23 @@ import matplotlib.ticker as mticker
 import numpy as np
 
 #: Series of the benchmark: (mode, input) -> label and colour.
-SERIES = {("inmemory", "csv"): ("in memory, one CSV file", "tab:blue"),
-          ("inmemory", "parquet"): ("in memory, Parquet folder", "tab:green"),
-          ("dask", "parquet"): ("Dask, 2 local workers, Parquet folder", "tab:orange")}
+SERIES = {
+    ("inmemory", "csv"): ("in memory, one CSV file", "tab:blue"),
+    ("inmemory", "parquet"): ("in memory, Parquet folder", "tab:green"),
+    ("dask", "parquet"): ("Dask, 2 local workers, Parquet folder", "tab:orange"),
+}
 
 
 def plot_scaling(rows: Sequence[dict[str, Any]]) -> plt.Figure:
     """Top: wall time (s) against trials, log-log, per series, with a dotted line of slope 1 over the last
-    decade through the in-memory CSV series' largest run; bottom: peak memory (MB) of the main process (solid) and of the
+    decade through the in-memory CSV series' largest run; bottom: peak memory (MB) of the main process
+    (solid) and of the
     largest Dask worker (dashed). Failed runs are left out (the table beside the figure lists them)."""
     fig, (a, b) = plt.subplots(2, 1, figsize=(6.4, 8.2))
     for (mode, kind), (label, color) in SERIES.items():
-        ok = sorted((r for r in rows if r["mode"] == mode and r["input"] == kind and not r["failed"]),
-                    key=lambda r: r["trials"])
+        ok = sorted(
+            (r for r in rows if r["mode"] == mode and r["input"] == kind and not r["failed"]), key=lambda r: r["trials"]
+        )
         if not ok:
             continue
         n = np.array([r["trials"] for r in ok], dtype=float)
@@ -32,8 +37,9 @@ def plot_scaling(rows: Sequence[dict[str, Any]]) -> plt.Figure:
             b.plot(n, [r["peak_worker_mb"] for r in ok], "s--", color=color, label="largest Dask worker")
         if (mode, kind) == ("inmemory", "csv") and len(n) > 1:
             ref = np.array([n[-1] / 10, n[-1]])
-            a.plot(ref, ok[-1]["wall_s"] * ref / n[-1], ":", color="0.4", lw=2,
-                   label="slope 1 (time proportional to N)")
+            a.plot(
+                ref, ok[-1]["wall_s"] * ref / n[-1], ":", color="0.4", lw=2, label="slope 1 (time proportional to N)"
+            )
     for ax, what in ((a, "wall time (s)"), (b, "peak memory (MB)")):
         ax.set_xscale("log")
         ax.set_yscale("log")

@@ -1,4 +1,5 @@
 """Figures of the SPARC chapter: speed profiles, normalised spectra and SPARC bands."""
+
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
@@ -10,8 +11,9 @@ from ..smoothness import SPARC_PARAMS, SparcSpectrum, sparc_spectrum
 from ._common import CLUSTER_COLORS
 
 
-def plot_sparc_spectra(spectra: Mapping[str, SparcSpectrum], ax: plt.Axes | None = None,
-                       fmax: float | None = None) -> plt.Figure:
+def plot_sparc_spectra(
+    spectra: Mapping[str, SparcSpectrum], ax: plt.Axes | None = None, fmax: float | None = None
+) -> plt.Figure:
     """Normalised Fourier magnitude spectra ``|V(f)| / V(0)`` against frequency (Hz): the band whose arc length
     SPARC measures drawn thick, the rest thin; the amplitude threshold (dashed), the maximum cut-off fc
     (dotted) and each adaptive cut-off (dot). Labels carry the SPARC values."""
@@ -33,13 +35,20 @@ def plot_sparc_spectra(spectra: Mapping[str, SparcSpectrum], ax: plt.Axes | None
     ax.set_ylim(0, 1.1)
     ax.set_xlabel("frequency f (Hz)")
     ax.set_ylabel(r"normalised magnitude $|V(f)|\,/\,V(0)$")
-    ax.legend(fontsize="small", loc="upper right", bbox_to_anchor=(1, 0.93), facecolor="white",
-              edgecolor="none", framealpha=0.9)  # the box hides the fc line behind the labels
+    ax.legend(
+        fontsize="small",
+        loc="upper right",
+        bbox_to_anchor=(1, 0.93),
+        facecolor="white",
+        edgecolor="none",
+        framealpha=0.9,
+    )  # the box hides the fc line behind the labels
     return fig
 
 
-def plot_speeds_and_spectra(speeds: Mapping[str, np.ndarray], fs: float, fmax: float | None = None,
-                            **sparc_params: float) -> plt.Figure:
+def plot_speeds_and_spectra(
+    speeds: Mapping[str, np.ndarray], fs: float, fmax: float | None = None, **sparc_params: float
+) -> plt.Figure:
     """Speed profiles (m/s against s, sampled at ``fs`` Hz) beside their normalised spectra and SPARC
     bands (:func:`plot_sparc_spectra`); ``sparc_params`` default to ``SPARC_PARAMS``."""
     params = {**SPARC_PARAMS, **sparc_params}
@@ -56,8 +65,13 @@ def plot_speeds_and_spectra(speeds: Mapping[str, np.ndarray], fs: float, fmax: f
     return fig
 
 
-def plot_sparc_against(x: Sequence[float], curves: Mapping[str, Sequence[float]], xlabel: str,
-                       ylabel: str = "SPARC", ax: plt.Axes | None = None) -> plt.Figure:
+def plot_sparc_against(
+    x: Sequence[float],
+    curves: Mapping[str, Sequence[float]],
+    xlabel: str,
+    ylabel: str = "SPARC",
+    ax: plt.Axes | None = None,
+) -> plt.Figure:
     """One or more smoothness values against a parameter of the movement (e.g. delay, noise level)."""
     fig, ax = (ax.figure, ax) if ax is not None else plt.subplots(figsize=(5.5, 3.4))
     for i, (label, y) in enumerate(curves.items()):

@@ -4,22 +4,15 @@
 (``_trials_file``), the output folder that never mixes runs (``_output``), the printed summary
 (``_summary``) and the command line (``_cli``, :func:`main`).
 """
+
 import lazy_loader as _lazy
 
 __getattr__, __dir__, __all__ = _lazy.attach(
     __name__,
     submod_attrs={
-        "_cli": [
-            "main"
-        ],
-        "_output": [
-            "output_folder", "OutputError", "RUN_FILES"
-        ],
-        "_run": [
-            "DEFAULT_DATA", "load_input", "OptionError", "run"
-        ],
-        "_summary": [
-            "summary_lines"
-        ],
+        "_cli": ["main"],
+        "_output": ["output_folder", "OutputError", "RUN_FILES"],
+        "_run": ["DEFAULT_DATA", "load_input", "OptionError", "run"],
+        "_summary": ["summary_lines"],
     },
 )

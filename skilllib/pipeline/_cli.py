@@ -10,6 +10,7 @@ was closed early (as ``| head``), quietly.
 Start-up is kept light: ``--help`` and ``--version`` import neither pandas nor scikit-learn,
 roboticstoolbox or matplotlib; those are imported when a run starts.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -18,7 +19,6 @@ import sys
 from collections.abc import Sequence
 
 from .. import __version__
-
 
 
 def _setting(text: str) -> dict[str, float]:
@@ -59,73 +59,150 @@ def _seed(text: str) -> int:
 
 
 def _parser() -> argparse.ArgumentParser:
+    from ..prototypes import DEFAULT_K
     from ..robot import ROBOT_NAMES
     from ..smoothness import DEFAULT_AMP_TH, DEFAULT_FC, DEFAULT_PADLEVEL
-    from ..prototypes import DEFAULT_K
 
-    p = argparse.ArgumentParser(prog="python -m skilllib",
-                                description="Smoothness-based prototypes and their transfer to a robot arm.")
+    p = argparse.ArgumentParser(
+        prog="python -m skilllib", description="Smoothness-based prototypes and their transfer to a robot arm."
+    )
     p.add_argument("--version", action="version", version=f"skilllib {__version__}")
     sub = p.add_subparsers(dest="command", required=True)
-    r = sub.add_parser("run", help="run the whole pipeline and write results.json and figures",
-                       description="Read recordings (CSV: participant, trial, t, x, y, z, contact; s and m; or C3D, "
-                                   "TRC, a folder of them), compute features, find prototypes, transfer them to a "
-                                   "robot arm.")
-    r.add_argument("--data", metavar="PATH",
-                   help="recordings: a CSV (also .gz, .zip, ...), a .c3d or .trc file (one trial), or a folder of "
-                        "them (default: the book's synthetic cohort)")
-    r.add_argument("--out", metavar="DIR", required=True,
-                   help="folder for results.json and the figures (replaced as a whole when the run ends)")
+    r = sub.add_parser(
+        "run",
+        help="run the whole pipeline and write results.json and figures",
+        description="Read recordings (CSV: participant, trial, t, x, y, z, contact; s and m; or C3D, "
+        "TRC, a folder of them), compute features, find prototypes, transfer them to a "
+        "robot arm.",
+    )
+    r.add_argument(
+        "--data",
+        metavar="PATH",
+        help="recordings: a CSV (also .gz, .zip, ...), a .c3d or .trc file (one trial), or a folder of "
+        "them (default: the book's synthetic cohort)",
+    )
+    r.add_argument(
+        "--out",
+        metavar="DIR",
+        required=True,
+        help="folder for results.json and the figures (replaced as a whole when the run ends)",
+    )
     g = r.add_argument_group("reading other formats (chapter 5)")
-    g.add_argument("--columns", type=_columns, metavar="OLD=NEW,...",
-                   help="rename the file's columns to participant, trial, t, x, y, z, contact")
-    g.add_argument("--units", choices=("m", "cm", "mm"), help="unit of the positions (default: m, or the C3D/TRC header's)")
-    g.add_argument("--up-axis", choices=("x", "y", "z", "-x", "-y", "-z"),
-                   help="the file's vertical axis, pointing up (default y)")
+    g.add_argument(
+        "--columns",
+        type=_columns,
+        metavar="OLD=NEW,...",
+        help="rename the file's columns to participant, trial, t, x, y, z, contact",
+    )
+    g.add_argument(
+        "--units", choices=("m", "cm", "mm"), help="unit of the positions (default: m, or the C3D/TRC header's)"
+    )
+    g.add_argument(
+        "--up-axis", choices=("x", "y", "z", "-x", "-y", "-z"), help="the file's vertical axis, pointing up (default y)"
+    )
     g.add_argument("--marker", metavar="NAME", help="the C3D/TRC marker to use (default: the only one)")
-    g.add_argument("--contact-channel", metavar="NAME",
-                   help="C3D analog channel or event that marks contact (default: 'contact' when present)")
-    g.add_argument("--contact-threshold", type=float, metavar="V",
-                   help="the C3D analog level above which a frame is in contact (default: halfway between the "
-                        "channel's minimum and maximum)")
-    g.add_argument("--contact-height", type=float, metavar="M",
-                   help="without a contact signal: contact from the first sample at or below this height (m)")
-    g.add_argument("--name-pattern", metavar="REGEX",
-                   help="for a folder: a regular expression with groups (?P<participant>...) and (?P<trial>...) "
-                        "matched against each file's name")
-    r.add_argument("--lowpass", default="auto", metavar="auto|none|HZ",
-                   help="low-pass filter of the positions before differentiating: auto (default: Winter's residual "
-                        "analysis, only when the noise needs it), none, or a cut-off in Hz")
+    g.add_argument(
+        "--contact-channel",
+        metavar="NAME",
+        help="C3D analog channel or event that marks contact (default: 'contact' when present)",
+    )
+    g.add_argument(
+        "--contact-threshold",
+        type=float,
+        metavar="V",
+        help="the C3D analog level above which a frame is in contact (default: halfway between the "
+        "channel's minimum and maximum)",
+    )
+    g.add_argument(
+        "--contact-height",
+        type=float,
+        metavar="M",
+        help="without a contact signal: contact from the first sample at or below this height (m)",
+    )
+    g.add_argument(
+        "--name-pattern",
+        metavar="REGEX",
+        help="for a folder: a regular expression with groups (?P<participant>...) and (?P<trial>...) "
+        "matched against each file's name",
+    )
+    r.add_argument(
+        "--lowpass",
+        default="auto",
+        metavar="auto|none|HZ",
+        help="low-pass filter of the positions before differentiating: auto (default: Winter's residual "
+        "analysis, only when the noise needs it), none, or a cut-off in Hz",
+    )
     r.add_argument("--k", type=int, default=DEFAULT_K, help=f"number of clusters (default {DEFAULT_K})")
     r.add_argument("--robot", default="simple6", choices=ROBOT_NAMES, help="robot arm (default simple6)")
-    r.add_argument("--qd-max", type=float, nargs="+", metavar="RAD_S",
-                   help="joint velocity limits in rad/s: one for all joints or one per joint "
-                        "(default: the robot's)")
-    r.add_argument("--qdd-max", type=float, nargs="+", metavar="RAD_S2",
-                   help="joint acceleration limits in rad/s^2: one for all joints or one per joint "
-                        "(default: the robot's; README)")
-    r.add_argument("--tau-max", type=float, nargs="+", metavar="NM",
-                   help="joint torque limits in N m, one for all joints or one per joint (arms with dynamics: "
-                        "ur5, puma560, panda; default: the robot's)")
-    r.add_argument("--scaling", choices=("raw", "standard"), default="raw",
-                   help="features as they are (the paper) or standardised before K-means")
+    r.add_argument(
+        "--qd-max",
+        type=float,
+        nargs="+",
+        metavar="RAD_S",
+        help="joint velocity limits in rad/s: one for all joints or one per joint (default: the robot's)",
+    )
+    r.add_argument(
+        "--qdd-max",
+        type=float,
+        nargs="+",
+        metavar="RAD_S2",
+        help="joint acceleration limits in rad/s^2: one for all joints or one per joint (default: the robot's; README)",
+    )
+    r.add_argument(
+        "--tau-max",
+        type=float,
+        nargs="+",
+        metavar="NM",
+        help="joint torque limits in N m, one for all joints or one per joint (arms with dynamics: "
+        "ur5, puma560, panda; default: the robot's)",
+    )
+    r.add_argument(
+        "--scaling",
+        choices=("raw", "standard"),
+        default="raw",
+        help="features as they are (the paper) or standardised before K-means",
+    )
     r.add_argument("--seed", type=_seed, default=0, help="random_state of K-means, 0 .. 2**32-1 (default 0)")
-    r.add_argument("--fc", type=float, default=DEFAULT_FC, metavar="HZ",
-                   help=f"SPARC's maximum cut-off frequency in Hz (default {DEFAULT_FC:g}, the paper's 0-20 Hz; "
-                        "at most the Nyquist frequency of the recordings)")
-    r.add_argument("--amp-th", type=float, default=DEFAULT_AMP_TH, metavar="FRACTION",
-                   help=f"SPARC's amplitude threshold (default {DEFAULT_AMP_TH:g})")
-    r.add_argument("--padlevel", type=int, default=DEFAULT_PADLEVEL, metavar="N",
-                   help=f"SPARC's zero padding, nfft = 2**(ceil(log2 N) + padlevel) (default {DEFAULT_PADLEVEL})")
-    r.add_argument("--sensitivity", type=_setting, nargs="+", metavar="SETTING",
-                   help="compare the run with other SPARC settings, each like fc=10 or fc=10,amp_th=0.1 "
-                        "(results.json sparc_sensitivity; chapter 3)")
+    r.add_argument(
+        "--fc",
+        type=float,
+        default=DEFAULT_FC,
+        metavar="HZ",
+        help=f"SPARC's maximum cut-off frequency in Hz (default {DEFAULT_FC:g}, the paper's 0-20 Hz; "
+        "at most the Nyquist frequency of the recordings)",
+    )
+    r.add_argument(
+        "--amp-th",
+        type=float,
+        default=DEFAULT_AMP_TH,
+        metavar="FRACTION",
+        help=f"SPARC's amplitude threshold (default {DEFAULT_AMP_TH:g})",
+    )
+    r.add_argument(
+        "--padlevel",
+        type=int,
+        default=DEFAULT_PADLEVEL,
+        metavar="N",
+        help=f"SPARC's zero padding, nfft = 2**(ceil(log2 N) + padlevel) (default {DEFAULT_PADLEVEL})",
+    )
+    r.add_argument(
+        "--sensitivity",
+        type=_setting,
+        nargs="+",
+        metavar="SETTING",
+        help="compare the run with other SPARC settings, each like fc=10 or fc=10,amp_th=0.1 "
+        "(results.json sparc_sensitivity; chapter 3)",
+    )
     g = r.add_argument_group("large corpora on a Dask cluster (README: At scale)")
-    g.add_argument("--workers", type=int, metavar="N",
-                   help="compute the features of --data, a folder of Parquet files, on a local Dask cluster of N "
-                        "worker processes")
-    g.add_argument("--scheduler", metavar="ADDRESS",
-                   help="the same on a running Dask cluster (e.g. tcp://10.0.0.5:8786)")
+    g.add_argument(
+        "--workers",
+        type=int,
+        metavar="N",
+        help="compute the features of --data, a folder of Parquet files, on a local Dask cluster of N worker processes",
+    )
+    g.add_argument(
+        "--scheduler", metavar="ADDRESS", help="the same on a running Dask cluster (e.g. tcp://10.0.0.5:8786)"
+    )
     r.add_argument("--no-figures", action="store_true", help="write results.json only")
     r.add_argument("--quiet", action="store_true", help="no progress bars (they are shown only on a terminal)")
     r.add_argument("--debug", action="store_true", help="show the traceback of an unexpected error")
@@ -150,17 +227,38 @@ def _run(args: argparse.Namespace) -> int:
         return None if values is None else (values[0] if len(values) == 1 else values)
 
     qd_max = one_or_all(args.qd_max)
-    read_options = {"columns": args.columns, "units": args.units, "up_axis": args.up_axis, "marker": args.marker,
-                    "contact_channel": args.contact_channel, "contact_threshold": args.contact_threshold,
-                    "contact_height": args.contact_height,
-                    "name_pattern": args.name_pattern}
+    read_options = {
+        "columns": args.columns,
+        "units": args.units,
+        "up_axis": args.up_axis,
+        "marker": args.marker,
+        "contact_channel": args.contact_channel,
+        "contact_threshold": args.contact_threshold,
+        "contact_height": args.contact_height,
+        "name_pattern": args.name_pattern,
+    }
     try:
-        result = run(args.data, args.out, k=args.k, robot=args.robot, qd_max=qd_max,
-                     qdd_max=one_or_all(args.qdd_max), tau_max=one_or_all(args.tau_max), scaling=args.scaling,
-                     random_state=args.seed, fc=args.fc, amp_th=args.amp_th, padlevel=args.padlevel,
-                     sensitivity=args.sensitivity, lowpass=args.lowpass, read_options=read_options,
-                     progress=progress, write_figures=not args.no_figures, workers=args.workers,
-                     scheduler=args.scheduler)
+        result = run(
+            args.data,
+            args.out,
+            k=args.k,
+            robot=args.robot,
+            qd_max=qd_max,
+            qdd_max=one_or_all(args.qdd_max),
+            tau_max=one_or_all(args.tau_max),
+            scaling=args.scaling,
+            random_state=args.seed,
+            fc=args.fc,
+            amp_th=args.amp_th,
+            padlevel=args.padlevel,
+            sensitivity=args.sensitivity,
+            lowpass=args.lowpass,
+            read_options=read_options,
+            progress=progress,
+            write_figures=not args.no_figures,
+            workers=args.workers,
+            scheduler=args.scheduler,
+        )
     except (DataFormatError, OptionError, OutputError, OSError) as e:  # the user's file, options or folder
         if args.debug:
             raise
@@ -169,8 +267,7 @@ def _run(args: argparse.Namespace) -> int:
     except Exception as e:  # an unexpected failure: one line, the traceback only on request
         if args.debug:
             raise
-        print(f"error: unexpected {type(e).__name__}: {e} (run again with --debug for the traceback)",
-              file=sys.stderr)
+        print(f"error: unexpected {type(e).__name__}: {e} (run again with --debug for the traceback)", file=sys.stderr)
         return 1
     print("\n".join(summary_lines(result)))
     n_fig = len(result.results.get("figures", []))
@@ -191,4 +288,3 @@ def main(argv: Sequence[str] | None = None) -> int:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return 141
-

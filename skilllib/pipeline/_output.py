@@ -10,6 +10,7 @@ empty file stays) lets one run at a time write a folder: a second run on the sam
 An existing ``--out`` is replaced only if it is empty or holds nothing but what a run writes (the files
 its results.json lists, results.json itself and the trial table): a run never deletes a user's own files.
 """
+
 from __future__ import annotations
 
 import contextlib
@@ -53,8 +54,10 @@ def output_folder(out: str | Path) -> Iterator[Path]:
         foreign = _written_by_a_run(out)
         if foreign:
             shown = ", ".join(foreign[:3]) + (f" and {len(foreign) - 3} more" if len(foreign) > 3 else "")
-            raise OutputError(f"{out}: holds files a skilllib run did not write ({shown}); a run replaces its "
-                              f"folder as a whole, so choose a new or empty folder for --out")
+            raise OutputError(
+                f"{out}: holds files a skilllib run did not write ({shown}); a run replaces its "
+                f"folder as a whole, so choose a new or empty folder for --out"
+            )
     out.parent.mkdir(parents=True, exist_ok=True)
     lock_path = out.parent / f".{out.name}.lock"
     with open(lock_path, "a+") as lock:
@@ -63,8 +66,10 @@ def output_folder(out: str | Path) -> Iterator[Path]:
         except BlockingIOError:
             lock.seek(0)
             who = lock.read().strip() or "another process"
-            raise OutputError(f"{out}: another skilllib run ({who}) is writing this folder; wait for it to "
-                              f"finish or choose another --out") from None
+            raise OutputError(
+                f"{out}: another skilllib run ({who}) is writing this folder; wait for it to "
+                f"finish or choose another --out"
+            ) from None
         lock.seek(0)
         lock.truncate()
         lock.write(f"pid {os.getpid()}")

@@ -8,6 +8,7 @@ tuples (:mod:`skilllib.prototypes`); joint velocities of every prototype on a ro
 (:mod:`skilllib.robot`). :func:`run` returns the results dictionary that is
 written to ``results.json`` (schema in README) and writes the figures beside it.
 """
+
 from __future__ import annotations
 
 import math
@@ -22,17 +23,23 @@ import pandas as pd
 
 from .. import __version__
 from .. import prototypes as pt
-from ..recordings import is_parquet
-from ..recordings import Recordings, read_recordings, recordings_from_frame
 from ..datasets import cohort_path
-from ..robot import Assessment, assess, resolve_limits, transfer_block
-from ..features import CONTACT_WINDOW, ONSET_SPEED, run_lowpass, segment, select, trial_features
-from ..features import Lowpass, parse_lowpass
-from ._output import output_folder, write_json_atomic
-from ..robot import RobotSetup, get_robot, qd_limits_vector
+from ..features import CONTACT_WINDOW, ONSET_SPEED, Lowpass, parse_lowpass, run_lowpass, segment, select, trial_features
 from ..prototypes import SparcSensitivity, sparc_sensitivity
+from ..recordings import Recordings, is_parquet, read_recordings, recordings_from_frame
+from ..robot import (
+    Assessment,
+    RobotSetup,
+    TransferResult,
+    assess,
+    get_robot,
+    qd_limits_vector,
+    resolve_limits,
+    transfer,
+    transfer_block,
+)
 from ..smoothness import DEFAULT_AMP_TH, DEFAULT_FC, DEFAULT_PADLEVEL
-from ..robot import TransferResult, transfer
+from ._output import output_folder, write_json_atomic
 from ._trials_file import in_json, trials_block, write_trials
 from ._trials_file import plain as _plain
 
@@ -103,8 +110,10 @@ def choose_k(requested: int, sweep: pt.SilhouetteSweep) -> tuple[int, str | None
     largest, requested = int(sweep.ks[-1]), int(requested)
     if requested <= largest:
         return requested, None
-    return largest, (f"k = {requested} needs more distinct selected trials than there are; "
-                     f"using k = {largest}, the largest the data allow")
+    return largest, (
+        f"k = {requested} needs more distinct selected trials than there are; "
+        f"using k = {largest}, the largest the data allow"
+    )
 
 
 def check_sparc_params(fc: float, amp_th: float, padlevel: int) -> dict[str, float]:
@@ -118,8 +127,9 @@ def check_sparc_params(fc: float, amp_th: float, padlevel: int) -> dict[str, flo
     if not 0 < amp_th < 1:
         raise OptionError(f"amp_th must lie between 0 and 1 (a fraction of the spectrum's peak), got {amp_th:g}")
     if isinstance(padlevel, bool) or not isinstance(padlevel, (int, np.integer)) or not 0 <= padlevel <= 10:
-        raise OptionError(f"padlevel must be an integer from 0 to 10 (nfft = 2**(ceil(log2 N) + padlevel)), "
-                          f"got {padlevel!r}")
+        raise OptionError(
+            f"padlevel must be an integer from 0 to 10 (nfft = 2**(ceil(log2 N) + padlevel)), got {padlevel!r}"
+        )
     return {"fc": fc, "amp_th": amp_th, "padlevel": int(padlevel)}
 
 
@@ -127,14 +137,18 @@ def check_sparc_params(fc: float, amp_th: float, padlevel: int) -> dict[str, flo
 MAX_SEED = 2**32 - 1
 
 
-def check_options(k: int, robot: str, qd_max: Sequence[float] | float | None,
-                  scaling: str, random_state: int = 0) -> tuple[RobotSetup, np.ndarray]:
+def check_options(
+    k: int, robot: str, qd_max: Sequence[float] | float | None, scaling: str, random_state: int = 0
+) -> tuple[RobotSetup, np.ndarray]:
     """The robot setup and the joint velocity limits (rad/s) for the options; :class:`OptionError` for a
     bad one. Called before the data are read, so a wrong option fails at once."""
     if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or k < 2:
         raise OptionError(f"k must be an integer of at least 2, got {k!r}")
-    if isinstance(random_state, bool) or not isinstance(random_state, (int, np.integer)) or \
-            not 0 <= random_state <= MAX_SEED:
+    if (
+        isinstance(random_state, bool)
+        or not isinstance(random_state, (int, np.integer))
+        or not 0 <= random_state <= MAX_SEED
+    ):
         raise OptionError(f"seed must be an integer from 0 to {MAX_SEED} (K-means' random_state), got {random_state!r}")
     if scaling not in ("raw", "standard"):
         raise OptionError(f"scaling must be 'raw' or 'standard', got {scaling!r}")
@@ -149,8 +163,9 @@ def check_options(k: int, robot: str, qd_max: Sequence[float] | float | None,
     return setup, limits
 
 
-def check_dynamic_options(robot: str, setup: RobotSetup, qdd_max: Sequence[float] | float | None,
-                          tau_max: Sequence[float] | float | None):
+def check_dynamic_options(
+    robot: str, setup: RobotSetup, qdd_max: Sequence[float] | float | None, tau_max: Sequence[float] | float | None
+):
     """The acceleration and torque limits for the options (:func:`skilllib.robot.resolve_limits`);
     :class:`OptionError` for a bad one."""
     try:
@@ -162,12 +177,13 @@ def check_dynamic_options(robot: str, setup: RobotSetup, qdd_max: Sequence[float
 def _check_nyquist(params: dict[str, float], fs: float) -> None:
     """fc above the Nyquist frequency would take the band into the spectrum's mirror image."""
     if np.isfinite(fs) and params["fc"] > fs / 2:
-        raise OptionError(f"fc = {params['fc']:g} Hz lies above the Nyquist frequency {fs / 2:g} Hz of these "
-                          f"recordings (sampled at {fs:g} Hz); choose fc <= {fs / 2:g} Hz")
+        raise OptionError(
+            f"fc = {params['fc']:g} Hz lies above the Nyquist frequency {fs / 2:g} Hz of these "
+            f"recordings (sampled at {fs:g} Hz); choose fc <= {fs / 2:g} Hz"
+        )
 
 
-def load_input(data: str | Path | pd.DataFrame | Recordings | None = None,
-               **read_options: Any) -> Recordings:
+def load_input(data: str | Path | pd.DataFrame | Recordings | None = None, **read_options: Any) -> Recordings:
     """The recordings of ``data``: the shipped cohort (None), :class:`Recordings` as they are, a DataFrame
     (validated), or a path: a CSV (compressed or not), a C3D or TRC file, or a folder of them
     (:func:`skilllib.recordings.load_recordings`, which ``read_options`` go to: ``columns``, ``units``,
@@ -188,14 +204,28 @@ def load_input(data: str | Path | pd.DataFrame | Recordings | None = None,
     return formats.load_recordings(DEFAULT_DATA if data is None else data, **options)
 
 
-def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | Path | None = None, *,
-        k: int = pt.DEFAULT_K, robot: str = "simple6", qd_max: Sequence[float] | float | None = None,
-        qdd_max: Sequence[float] | float | None = None, tau_max: Sequence[float] | float | None = None,
-        scaling: str = "raw", random_state: int = 0, fc: float = DEFAULT_FC, amp_th: float = DEFAULT_AMP_TH,
-        padlevel: int = DEFAULT_PADLEVEL, sensitivity: Sequence[Mapping[str, float]] | None = None,
-        lowpass: str | float | Lowpass | None = "auto", read_options: Mapping[str, Any] | None = None,
-        progress: Progress = _no_progress, write_figures: bool = True, workers: int | None = None,
-        scheduler: str | None = None) -> PipelineRun:
+def run(
+    data: str | Path | pd.DataFrame | Recordings | None = None,
+    out: str | Path | None = None,
+    *,
+    k: int = pt.DEFAULT_K,
+    robot: str = "simple6",
+    qd_max: Sequence[float] | float | None = None,
+    qdd_max: Sequence[float] | float | None = None,
+    tau_max: Sequence[float] | float | None = None,
+    scaling: str = "raw",
+    random_state: int = 0,
+    fc: float = DEFAULT_FC,
+    amp_th: float = DEFAULT_AMP_TH,
+    padlevel: int = DEFAULT_PADLEVEL,
+    sensitivity: Sequence[Mapping[str, float]] | None = None,
+    lowpass: str | float | Lowpass | None = "auto",
+    read_options: Mapping[str, Any] | None = None,
+    progress: Progress = _no_progress,
+    write_figures: bool = True,
+    workers: int | None = None,
+    scheduler: str | None = None,
+) -> PipelineRun:
     """Run the pipeline on ``data`` (default: the book's synthetic cohort) and write ``out``.
 
     ``data``: a path (CSV, compressed CSV, C3D, TRC, or a folder of them), a pandas DataFrame in the
@@ -204,7 +234,8 @@ def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | P
     allow fewer; ``robot``: a name of :func:`skilllib.robot.get_robot`; ``qd_max``: joint velocity limits
     in rad/s (one for all joints or one per joint; default: the robot's); ``qdd_max`` (rad/s^2) and
     ``tau_max`` (N m): joint acceleration and torque limits, likewise (default: the robot's,
-    :func:`skilllib.robot.dynamic_limits`); ``scaling``: "raw" (the paper) or "standard"; ``random_state``: K-means' seed (0 .. 2**32 - 1); ``fc`` (Hz, at most the Nyquist frequency
+    :func:`skilllib.robot.dynamic_limits`); ``scaling``: "raw" (the paper) or "standard"; ``random_state``:
+    K-means' seed (0 .. 2**32 - 1); ``fc`` (Hz, at most the Nyquist frequency
     of the recordings), ``amp_th`` and ``padlevel``: the SPARC parameters (:func:`skilllib.smoothness.sparc`;
     default the book's, fc = 20 Hz); ``sensitivity``: other SPARC settings (dicts of some of fc, amp_th,
     padlevel; the rest as this run's) to compare with this run's
@@ -242,8 +273,15 @@ def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | P
         from ..features import cluster_features
 
         try:
-            recordings, features = cluster_features(data, workers, scheduler, lowpass=lowpass, sparc_params=params,
-                                                    read_options=read_options, variants=variants)
+            recordings, features = cluster_features(
+                data,
+                workers,
+                scheduler,
+                lowpass=lowpass,
+                sparc_params=params,
+                read_options=read_options,
+                variants=variants,
+            )
         except ValueError as e:  # an option the cluster path does not take
             raise OptionError(str(e)) from None
         filt = features.attrs["lowpass"]
@@ -255,9 +293,21 @@ def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | P
         filt = filt if features is not None else run_lowpass(recordings, lowpass)
     except ValueError as e:  # a cut-off too high for the sampling rate
         raise OptionError(str(e)) from None
-    result = compute(recordings, data, setup=setup, limits=limits, dyn_limits=dyn_limits, k=k, scaling=scaling,
-                     random_state=random_state, params=params, variants=variants, lowpass=filt, progress=progress,
-                     features=features)
+    result = compute(
+        recordings,
+        data,
+        setup=setup,
+        limits=limits,
+        dyn_limits=dyn_limits,
+        k=k,
+        scaling=scaling,
+        random_state=random_state,
+        params=params,
+        variants=variants,
+        lowpass=filt,
+        progress=progress,
+        features=features,
+    )
     if out is not None:
         with output_folder(out) as folder:
             if not in_json(result.features):
@@ -269,10 +319,22 @@ def run(data: str | Path | pd.DataFrame | Recordings | None = None, out: str | P
     return result
 
 
-def compute(recordings: Recordings, data: Any, *, setup: RobotSetup, limits: np.ndarray, dyn_limits: Any,
-            k: int, scaling: str,
-            random_state: int, params: dict[str, float], variants: list[dict[str, float]], lowpass: Lowpass,
-            progress: Progress = _no_progress, features: pd.DataFrame | None = None) -> PipelineRun:
+def compute(
+    recordings: Recordings,
+    data: Any,
+    *,
+    setup: RobotSetup,
+    limits: np.ndarray,
+    dyn_limits: Any,
+    k: int,
+    scaling: str,
+    random_state: int,
+    params: dict[str, float],
+    variants: list[dict[str, float]],
+    lowpass: Lowpass,
+    progress: Progress = _no_progress,
+    features: pd.DataFrame | None = None,
+) -> PipelineRun:
     """The pipeline's computation on validated ``recordings`` with checked options (see :func:`run`);
     ``features``: their feature table when computed already (on a cluster)."""
     if features is None:
@@ -281,9 +343,14 @@ def compute(recordings: Recordings, data: Any, *, setup: RobotSetup, limits: np.
     results: dict[str, Any] = {
         "schema_version": SCHEMA_VERSION,
         "skilllib_version": __version__,
-        "dataset": {"path": _display_path(data), "synthetic": _is_shipped_cohort(data),
-                    "n_trials": len(features), "n_participants": int(features["participant"].nunique()),
-                    "fs": _plain(float(recordings.fs)), "n_resampled": int(features["resampled"].sum())},
+        "dataset": {
+            "path": _display_path(data),
+            "synthetic": _is_shipped_cohort(data),
+            "n_trials": len(features),
+            "n_participants": int(features["participant"].nunique()),
+            "fs": _plain(float(recordings.fs)),
+            "n_resampled": int(features["resampled"].sum()),
+        },
         "sparc_params": {"fc": params["fc"], "amp_th": params["amp_th"], "padlevel": int(params["padlevel"])},
         "filter": lowpass.to_dict(),
         "contact_speed_window": list(CONTACT_WINDOW),
@@ -295,17 +362,24 @@ def compute(recordings: Recordings, data: Any, *, setup: RobotSetup, limits: np.
         result.messages.append("the sampling rate is unknown: no trial is usable to derive it from the time stamps")
     n_res = results["dataset"]["n_resampled"]
     if n_res:
-        result.messages.append(f"{n_res} trial(s) had irregular time stamps (jitter or dropped frames) and were "
-                               f"resampled onto a uniform {recordings.fs:.4g} Hz grid (trials[].resampled)")
+        result.messages.append(
+            f"{n_res} trial(s) had irregular time stamps (jitter or dropped frames) and were "
+            f"resampled onto a uniform {recordings.fs:.4g} Hz grid (trials[].resampled)"
+        )
     no_rest = int(features["reason"].astype(str).str.startswith("no rest before onset").sum())
     if no_rest > NO_REST_FRACTION * len(features):
-        hint = ("a stronger low-pass filter (--lowpass HZ)" if lowpass.cutoff_hz is not None else
-                "a low-pass filter (--lowpass auto or HZ)" if lowpass.chosen_by == "none" else
-                "a low-pass filter (--lowpass HZ)")
+        hint = (
+            "a stronger low-pass filter (--lowpass HZ)"
+            if lowpass.cutoff_hz is not None
+            else "a low-pass filter (--lowpass auto or HZ)"
+            if lowpass.chosen_by == "none"
+            else "a low-pass filter (--lowpass HZ)"
+        )
         result.messages.append(
             f"{no_rest} of {len(features)} trials are invalid with 'no rest before onset': either the recordings "
             f"start after the movement began, or the position noise is so large that its derivative exceeds the "
-            f"{ONSET_SPEED:g} m/s onset speed; then try {hint} (chapter 5)")
+            f"{ONSET_SPEED:g} m/s onset speed; then try {hint} (chapter 5)"
+        )
     if lowpass.cutoff_hz is not None:
         result.messages.append(filter_message(selected, lowpass))
     if len(selected):
@@ -313,14 +387,15 @@ def compute(recordings: Recordings, data: Any, *, setup: RobotSetup, limits: np.
 
     sweep = None
     if len(selected) < MIN_SELECTED:
-        result.messages.append(f"only {len(selected)} selected trial(s): clustering needs at least "
-                               f"{MIN_SELECTED}; no prototypes and no transfer")
+        result.messages.append(
+            f"only {len(selected)} selected trial(s): clustering needs at least "
+            f"{MIN_SELECTED}; no prototypes and no transfer"
+        )
     else:
         try:
             with warnings.catch_warnings(record=True) as caught:  # a shrunk k range: a note of the run
                 warnings.simplefilter("always", UserWarning)
-                sweep = pt.silhouette_sweep(selected, scaling=scaling, random_state=random_state,
-                                            progress=progress)
+                sweep = pt.silhouette_sweep(selected, scaling=scaling, random_state=random_state, progress=progress)
         except ValueError as e:
             result.messages.append(f"{e}; no prototypes and no transfer")
         else:
@@ -333,7 +408,8 @@ def compute(recordings: Recordings, data: Any, *, setup: RobotSetup, limits: np.
             valid = sweep.valid_ks()
             result.messages.append(
                 f"k = {k_used} is not silhouette-valid for these data (a cluster lies wholly below the average "
-                f"silhouette); valid k: {', '.join(map(str, valid)) or 'none'} (see silhouette_sweep.png, --k)")
+                f"silhouette); valid k: {', '.join(map(str, valid)) or 'none'} (see silhouette_sweep.png, --k)"
+            )
         result.sweep, result.prototypes = sweep, fit
         results["silhouette"] = sweep.to_dict()
         results["silhouette_estimate"] = est = sweep.estimate_dict()
@@ -342,24 +418,35 @@ def compute(recordings: Recordings, data: Any, *, setup: RobotSetup, limits: np.
             result.messages.append(
                 f"silhouettes estimated: {est['n_points']} selected trials > {est['exact_max']} (exact up to that); "
                 f"mean of {est['repeats']} stratified random subsamples of {est['sample_size']} per k, seeded by "
-                f"--seed (largest SD over the subsamples {sd:.3f}; silhouette_estimate)")
+                f"--seed (largest SD over the subsamples {sd:.3f}; silhouette_estimate)"
+            )
         results["silhouette_valid_k"] = sweep.valid_ks()
         results["k"] = k_used
         results["scaling"] = scaling
         results["clusters"] = fit.to_dict()["clusters"]
         for c in progress(list(range(k_used)), "transfer"):
             p, tr = fit.prototypes.at[c, "participant"], fit.prototypes.at[c, "trial"]
-            seg = (segment(recordings, p, tr, lowpass=lowpass) if isinstance(recordings, Recordings) else
-                   recordings.segment(p, tr, lowpass=lowpass))
+            seg = (
+                segment(recordings, p, tr, lowpass=lowpass)
+                if isinstance(recordings, Recordings)
+                else recordings.segment(p, tr, lowpass=lowpass)
+            )
             result.profiles.append((seg.t - seg.t[0], seg.speed))
-            result.transfers.append(transfer(setup.robot, seg.t - seg.t[0], seg.pos, seg.vel, q0=setup.q0,
-                                             qd_limits=limits, cluster=c))
+            result.transfers.append(
+                transfer(setup.robot, seg.t - seg.t[0], seg.pos, seg.vel, q0=setup.q0, qd_limits=limits, cluster=c)
+            )
         result.assessments = assess(setup.robot, result.transfers, dyn_limits, sparc_params=params)
         results["transfer"] = transfer_block(result.assessments)
     if variants and sweep is not None:
-        result.sensitivity = sparc_sensitivity(recordings, [params, *variants], k=results["k"], scaling=scaling,
-                                               random_state=random_state, reference=(features, sweep),
-                                               lowpass=lowpass)
+        result.sensitivity = sparc_sensitivity(
+            recordings,
+            [params, *variants],
+            k=results["k"],
+            scaling=scaling,
+            random_state=random_state,
+            reference=(features, sweep),
+            lowpass=lowpass,
+        )
         results["sparc_sensitivity"] = result.sensitivity.to_dict()
     elif variants:
         result.messages.append("no SPARC sensitivity analysis: too few selected trials to cluster")
@@ -382,17 +469,21 @@ def _settings(sensitivity: Sequence[Mapping[str, float]] | None) -> list[Mapping
 def capped_message(selected: pd.DataFrame, params: Mapping[str, float]) -> str:
     """How many selected trials had their SPARC band ended by fc rather than the amplitude threshold."""
     n = int(selected["sparc_capped"].sum())
-    return (f"{n} of {len(selected)} selected trials have their SPARC band ended by fc = {params['fc']:g} Hz rather "
-            f"than by the amplitude threshold {params['amp_th']:g} (sparc_capped): their SPARC depends on fc "
-            f"(compare settings with --sensitivity, chapter 3)")
+    return (
+        f"{n} of {len(selected)} selected trials have their SPARC band ended by fc = {params['fc']:g} Hz rather "
+        f"than by the amplitude threshold {params['amp_th']:g} (sparc_capped): their SPARC depends on fc "
+        f"(compare settings with --sensitivity, chapter 3)"
+    )
 
 
 def filter_message(selected: pd.DataFrame, lowpass: Lowpass) -> str:
     """What the low-pass filter did, and how many selected trials SPARC read beyond its cut-off."""
     beyond = int((selected["sparc_band_end_hz"] > lowpass.cutoff_hz).sum())
-    return (f"positions were low-pass filtered at {lowpass.cutoff_hz:.3g} Hz ({lowpass.chosen_by}; zero-lag "
-            f"Butterworth, filter in results.json); SPARC's band reaches above that cut-off in {beyond} of "
-            f"{len(selected)} selected trials, whose SPARC is partly the filter's (chapter 5)")
+    return (
+        f"positions were low-pass filtered at {lowpass.cutoff_hz:.3g} Hz ({lowpass.chosen_by}; zero-lag "
+        f"Butterworth, filter in results.json); SPARC's band reaches above that cut-off in {beyond} of "
+        f"{len(selected)} selected trials, whose SPARC is partly the filter's (chapter 5)"
+    )
 
 
 def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
@@ -417,8 +508,10 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
             keep(fg.plot_trials_by_participant(run_.recordings, few), "trials_by_participant", note)
         keep(fg.plot_participant_features(few), "participant_features", note)
         if samples:
-            keep(fg.plot_sparc_vs_length(run_.features, run_.recordings.fs, run_.results["sparc_params"]["amp_th"]),
-                 "sparc_vs_length")
+            keep(
+                fg.plot_sparc_vs_length(run_.features, run_.recordings.fs, run_.results["sparc_params"]["amp_th"]),
+                "sparc_vs_length",
+            )
     if run_.prototypes is not None:
         keep(fg.plot_silhouette_sweep(run_.sweep, chosen_k=run_.prototypes.k), "silhouette_sweep")
         keep(fg.plot_silhouettes(run_.prototypes), "silhouettes_k")

@@ -3,6 +3,7 @@
 ``python -m skilllib run`` prints :func:`summary_lines` at the end of a run; :func:`reason_kind` groups
 trials' reasons that differ only in their numbers.
 """
+
 from __future__ import annotations
 
 import re
@@ -24,9 +25,13 @@ def summary_lines(run_: PipelineRun) -> list[str]:
     counts = f["status"].value_counts()
     fs = run_.recordings.fs
     rate = f"at {fs:.4g} Hz (from the time stamps)" if np.isfinite(fs) else "at an unknown sampling rate"
-    lines = [f"trials read: {len(f)} from {run_.results['dataset']['n_participants']} participant(s) {rate}",
-             (f"selected: {counts.get('selected', 0)}, excluded: {counts.get('excluded', 0)}, "
-              f"invalid: {counts.get('invalid', 0)}")]
+    lines = [
+        f"trials read: {len(f)} from {run_.results['dataset']['n_participants']} participant(s) {rate}",
+        (
+            f"selected: {counts.get('selected', 0)}, excluded: {counts.get('excluded', 0)}, "
+            f"invalid: {counts.get('invalid', 0)}"
+        ),
+    ]
     for status in ("invalid", "excluded"):
         reasons = Counter(reason_kind(r) for r in f.loc[f["status"] == status, "reason"])
         if reasons:
@@ -34,28 +39,44 @@ def summary_lines(run_: PipelineRun) -> list[str]:
             lines.append(f"  commonest {status} reasons: {top}")
     if run_.prototypes is not None:
         fit = run_.prototypes
-        how = "" if fit.silhouette_estimate is None else f" (estimate, SD {fit.silhouette_estimate.sd:.3f} over subsamples)"
+        how = (
+            ""
+            if fit.silhouette_estimate is None
+            else f" (estimate, SD {fit.silhouette_estimate.sd:.3f} over subsamples)"
+        )
         lines.append(f"k = {fit.k} clusters ({fit.scaling} features), average silhouette {fit.silhouette:.3f}{how}")
         for c, (tr, a) in enumerate(zip(run_.transfers, run_.assessments)):
             p = {col: fit.prototypes.at[c, col] for col in fit.prototypes.columns}
             dyn = a.dynamics
-            verdict = "feasible" if dyn.feasible else (
-                f"needs time scaling x{dyn.time_scale:.2f} ({dyn.binding_limit} binds)" if not tr.flags
-                else f"{len(tr.flags)} flag(s)")
+            verdict = (
+                "feasible"
+                if dyn.feasible
+                else (
+                    f"needs time scaling x{dyn.time_scale:.2f} ({dyn.binding_limit} binds)"
+                    if not tr.flags
+                    else f"{len(tr.flags)} flag(s)"
+                )
+            )
             peak = f"{np.nanmax(tr.peak_abs_qd):.2f}" if np.isfinite(tr.peak_abs_qd).any() else "n/a"
-            lines.append(f"  cluster {c}: size {fit.sizes[c]}, prototype participant {p['participant']} trial "
-                         f"{p['trial']} (PV {p['pv']:.2f} m/s, SPARC {p['sparc']:.2f}); "
-                         f"peak |qd| {peak} rad/s, {verdict}")
+            lines.append(
+                f"  cluster {c}: size {fit.sizes[c]}, prototype participant {p['participant']} trial "
+                f"{p['trial']} (PV {p['pv']:.2f} m/s, SPARC {p['sparc']:.2f}); "
+                f"peak |qd| {peak} rad/s, {verdict}"
+            )
         n_ok = sum(a.dynamics.feasible for a in run_.assessments)
-        lines.append(f"feasibility on {run_.transfers[0].robot} ({limits_text(run_.assessments[0].dynamics)}): "
-                     f"{n_ok} of {fit.k} prototypes feasible as recorded")
+        lines.append(
+            f"feasibility on {run_.transfers[0].robot} ({limits_text(run_.assessments[0].dynamics)}): "
+            f"{n_ok} of {fit.k} prototypes feasible as recorded"
+        )
     if run_.sensitivity is not None:
         sens = run_.sensitivity
         lines.append(f"SPARC sensitivity, against this run's {sens.reference.label}:")
         for label, c in sens.comparison().iterrows():
-            lines.append(f"  {label}: SPARC changed in {int(c['changed'])} of {int(c['of'])} selected trials (mean |change| "
-                         f"{c['mean |change|']:.3f}, SD across trials {c['reference SD']:.3f}); ARI {c['ARI']:.2f} "
-                         f"with this run's k = {sens.k} partition; {int(c['prototypes kept'])} of {sens.k} prototypes kept")
+            lines.append(
+                f"  {label}: SPARC changed in {int(c['changed'])} of {int(c['of'])} selected trials (mean |change| "
+                f"{c['mean |change|']:.3f}, SD across trials {c['reference SD']:.3f}); ARI {c['ARI']:.2f} "
+                f"with this run's k = {sens.k} partition; {int(c['prototypes kept'])} of {sens.k} prototypes kept"
+            )
     lines += [f"note: {m}" for m in run_.messages]
     return lines
 

@@ -9,6 +9,7 @@ trials) and take seconds to write and to read, so the run writes the whole featu
 ``results["trials_file"] = "trials.parquet"``, with the counts per status in ``results["trial_counts"]``.
 :func:`read_trials` gives the table of a run's folder either way.
 """
+
 from __future__ import annotations
 
 import json
@@ -22,8 +23,20 @@ import pandas as pd
 TRIALS_IN_JSON_MAX = 10_000  #: more trials than this: the table goes to trials.parquet
 TRIALS_FILE = "trials.parquet"
 #: The keys of each entry of results.json's trials list.
-TRIAL_KEYS = ("participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
-              "sparc_band_end_hz", "sparc_capped", "ldlj", "resampled")
+TRIAL_KEYS = (
+    "participant",
+    "trial",
+    "status",
+    "reason",
+    "pv",
+    "contact_speed",
+    "duration",
+    "sparc",
+    "sparc_band_end_hz",
+    "sparc_capped",
+    "ldlj",
+    "resampled",
+)
 
 
 def plain(v: Any) -> Any:
@@ -59,8 +72,10 @@ def trials_block(features: pd.DataFrame) -> dict[str, Any]:
     if in_json(features):
         return {"trials": trials_section(features)}
     counts = features["status"].value_counts()
-    return {"trials_file": TRIALS_FILE,
-            "trial_counts": {s: int(counts.get(s, 0)) for s in ("selected", "excluded", "invalid")}}
+    return {
+        "trials_file": TRIALS_FILE,
+        "trial_counts": {s: int(counts.get(s, 0)) for s in ("selected", "excluded", "invalid")},
+    }
 
 
 def write_trials(features: pd.DataFrame, folder: Path) -> Path:

@@ -17,6 +17,7 @@ Silhouettes are exact up to ``SILHOUETTE_EXACT_MAX`` trials, above it estimated 
 (:mod:`skilllib.prototypes`). Results for ``results.json``: ``{"silhouette": sweep.to_dict(),
 **result.to_dict()}``, see :func:`results_section`; ``sweep.estimate_dict()`` says how they were computed.
 """
+
 from __future__ import annotations
 
 import warnings
@@ -69,8 +70,10 @@ def _validate(data: pd.DataFrame) -> pd.DataFrame:
     bad = ~np.isfinite(x).all(axis=1)
     if bad.any():
         ex = list(df.loc[bad, list(ID_COLUMNS)].head(3).itertuples(index=False, name=None))
-        raise ValueError(f"{int(bad.sum())} trial(s) have NaN or infinite pv/sparc, e.g. (participant, "
-                         f"trial) {ex}; drop or deselect them before clustering")
+        raise ValueError(
+            f"{int(bad.sum())} trial(s) have NaN or infinite pv/sparc, e.g. (participant, "
+            f"trial) {ex}; drop or deselect them before clustering"
+        )
     dup = df.duplicated(list(ID_COLUMNS))
     if dup.any():
         ex = list(df.loc[dup, list(ID_COLUMNS)].head(3).itertuples(index=False, name=None))
@@ -93,12 +96,13 @@ def _check_k(x: np.ndarray, k: int) -> int:
     if k < 2:
         raise ValueError(f"k = {k}: need at least 2 clusters (silhouettes need 2 <= k <= n - 1)")
     if n < k + 1:
-        raise ValueError(f"{n} trials are too few for k = {k} clusters: need at least k + 1 = {k + 1} "
-                         "(the silhouette is defined for 2 <= k <= n - 1, Rousseeuw 1987)")
+        raise ValueError(
+            f"{n} trials are too few for k = {k} clusters: need at least k + 1 = {k + 1} "
+            "(the silhouette is defined for 2 <= k <= n - 1, Rousseeuw 1987)"
+        )
     distinct = _n_distinct(x)
     if distinct < k:
-        raise ValueError(f"only {distinct} distinct (pv, sparc) points among {n} trials: "
-                         f"cannot form k = {k} clusters")
+        raise ValueError(f"only {distinct} distinct (pv, sparc) points among {n} trials: cannot form k = {k} clusters")
     return k
 
 
@@ -120,6 +124,7 @@ def _scale(x: np.ndarray, scaling: str) -> tuple[np.ndarray, np.ndarray, np.ndar
 @dataclass(frozen=True)
 class _Fit:
     """A fit in clustering space, clusters already ordered by centre PV."""
+
     labels: np.ndarray  # (n,) 0..k-1
     centres_z: np.ndarray  # (k, 2) in clustering space
     typ_dist: np.ndarray  # (n,) distance of each point to its own cluster's centre (prototype choice)
@@ -135,8 +140,7 @@ def _fit_arrays(x: np.ndarray, k: int, method: str, scaling: str, random_state: 
         km = KMeans(n_clusters=k, init="k-means++", n_init=n_init, random_state=random_state).fit(z)
         raw, cz = km.labels_, km.cluster_centers_
     elif method == "gmm":
-        gm = GaussianMixture(n_components=k, covariance_type="full", n_init=n_init,
-                             random_state=random_state).fit(z)
+        gm = GaussianMixture(n_components=k, covariance_type="full", n_init=n_init, random_state=random_state).fit(z)
         raw, cz = gm.predict(z), gm.means_
     elif method == "agglomerative":
         raw = AgglomerativeClustering(n_clusters=k, linkage="ward").fit_predict(z)
@@ -145,8 +149,9 @@ def _fit_arrays(x: np.ndarray, k: int, method: str, scaling: str, random_state: 
         raise ValueError(f"method must be 'kmeans', 'gmm' or 'agglomerative', got {method!r}")
     empty = sorted(set(range(k)) - set(np.unique(raw).tolist()))
     if empty:
-        raise ValueError(f"{method} left component(s) {empty} of k = {k} without trials; "
-                         "choose a smaller k or another method")
+        raise ValueError(
+            f"{method} left component(s) {empty} of k = {k} without trials; choose a smaller k or another method"
+        )
     if method == "gmm":  # Mahalanobis distance under the point's own component
         y = np.einsum("ni,nij->nj", z - cz[raw], gm.precisions_cholesky_[raw])
         dist = np.linalg.norm(y, axis=1)
@@ -228,14 +233,26 @@ class PrototypeResult:
         clusters = []
         for c in range(self.k):
             p = {col: self.prototypes.at[c, col] for col in self.prototypes.columns}  # keeps each dtype
-            clusters.append({
-                "id": c, "size": int(self.sizes[c]),
-                "centre": {"pv": float(self.centres.at[c, "pv"]), "sparc": float(self.centres.at[c, "sparc"])},
-                "prototype": {"participant": _plain(p["participant"]), "trial": _plain(p["trial"]),
-                              "pv": float(p["pv"]), "sparc": float(p["sparc"])},
-            })
-        return {"k": self.k, "method": self.method, "scaling": self.scaling,
-                "average_silhouette": float(self.silhouette), "clusters": clusters}
+            clusters.append(
+                {
+                    "id": c,
+                    "size": int(self.sizes[c]),
+                    "centre": {"pv": float(self.centres.at[c, "pv"]), "sparc": float(self.centres.at[c, "sparc"])},
+                    "prototype": {
+                        "participant": _plain(p["participant"]),
+                        "trial": _plain(p["trial"]),
+                        "pv": float(p["pv"]),
+                        "sparc": float(p["sparc"]),
+                    },
+                }
+            )
+        return {
+            "k": self.k,
+            "method": self.method,
+            "scaling": self.scaling,
+            "average_silhouette": float(self.silhouette),
+            "clusters": clusters,
+        }
 
 
 def _plain(v: Any) -> Any:
@@ -243,8 +260,15 @@ def _plain(v: Any) -> Any:
 
 
 @_single_threaded
-def fit_prototypes(data: pd.DataFrame, k: int = DEFAULT_K, *, method: Method = "kmeans",
-                   scaling: Scaling = "raw", random_state: int = 0, n_init: int = 10) -> PrototypeResult:
+def fit_prototypes(
+    data: pd.DataFrame,
+    k: int = DEFAULT_K,
+    *,
+    method: Method = "kmeans",
+    scaling: Scaling = "raw",
+    random_state: int = 0,
+    n_init: int = 10,
+) -> PrototypeResult:
     """Cluster the (PV, SPARC) tuples into ``k`` clusters and pick each cluster's prototype trial.
 
     ``method="kmeans"`` is the paper's: ``sklearn.cluster.KMeans`` (Lloyd, k-means++ seeding) with
@@ -274,10 +298,21 @@ def fit_prototypes(data: pd.DataFrame, k: int = DEFAULT_K, *, method: Method = "
     prototypes = df.loc[rows, [*ID_COLUMNS, *FEATURES]].assign(row=rows).reset_index(drop=True)
     prototypes.index.name = "cluster"
     s, average, est = _sil.silhouette(fit.z, labels, random_state)
-    return PrototypeResult(k=k, method=method, scaling=scaling, random_state=random_state, n_init=n_init,
-                           data=df, centres=centres, prototypes=prototypes,
-                           sizes=np.bincount(labels, minlength=k), silhouette=average, silhouette_samples=s,
-                           silhouette_method="exact" if est is None else "subsample", silhouette_estimate=est)
+    return PrototypeResult(
+        k=k,
+        method=method,
+        scaling=scaling,
+        random_state=random_state,
+        n_init=n_init,
+        data=df,
+        centres=centres,
+        prototypes=prototypes,
+        sizes=np.bincount(labels, minlength=k),
+        silhouette=average,
+        silhouette_samples=s,
+        silhouette_method="exact" if est is None else "subsample",
+        silhouette_estimate=est,
+    )
 
 
 @dataclass(frozen=True, eq=False)
@@ -307,9 +342,14 @@ class SilhouetteSweep:
 
     def table(self) -> pd.DataFrame:
         """One row per k: ``silhouette``, ``valid``, ``failing`` (cluster ids below the average)."""
-        return pd.DataFrame({"k": self.ks, "silhouette": self.scores,
-                             "valid": [self.results[k].valid for k in self.ks],
-                             "failing": [self.results[k].failing_clusters() for k in self.ks]}).set_index("k")
+        return pd.DataFrame(
+            {
+                "k": self.ks,
+                "silhouette": self.scores,
+                "valid": [self.results[k].valid for k in self.ks],
+                "failing": [self.results[k].failing_clusters() for k in self.ks],
+            }
+        ).set_index("k")
 
     def to_dict(self) -> dict[str, float]:
         """``{"2": score, ..., "16": score}`` for results.json."""
@@ -320,10 +360,17 @@ class SilhouetteSweep:
         return _sil.sweep_estimate(self.results, _sil.SILHOUETTE_EXACT_MAX)
 
 
-def silhouette_sweep(data: pd.DataFrame, k_min: int = K_RANGE[0], k_max: int = K_RANGE[1], *,
-                     method: Method = "kmeans", scaling: Scaling = "raw", random_state: int = 0,
-                     n_init: int = 10,
-                     progress: Callable[[list[int], str], Iterable[int]] | None = None) -> SilhouetteSweep:
+def silhouette_sweep(
+    data: pd.DataFrame,
+    k_min: int = K_RANGE[0],
+    k_max: int = K_RANGE[1],
+    *,
+    method: Method = "kmeans",
+    scaling: Scaling = "raw",
+    random_state: int = 0,
+    n_init: int = 10,
+    progress: Callable[[list[int], str], Iterable[int]] | None = None,
+) -> SilhouetteSweep:
     """Fit k = k_min..k_max clusters and compute silhouettes (Rousseeuw 1987) as the paper does (2..16).
 
     The silhouette needs k <= n - 1, and k clusters need k distinct points: when the data allow fewer
@@ -338,35 +385,63 @@ def silhouette_sweep(data: pd.DataFrame, k_min: int = K_RANGE[0], k_max: int = K
     n, distinct = len(x), _n_distinct(x)
     hi = min(k_max, n - 1, distinct)
     if hi < k_min:
-        raise ValueError(f"{n} trials ({distinct} distinct (pv, sparc) points) are too few for a silhouette "
-                         f"sweep from k = {k_min}: need at least {k_min + 1} trials and {k_min} distinct points")
+        raise ValueError(
+            f"{n} trials ({distinct} distinct (pv, sparc) points) are too few for a silhouette "
+            f"sweep from k = {k_min}: need at least {k_min + 1} trials and {k_min} distinct points"
+        )
     if hi < k_max:
-        warnings.warn(f"silhouette sweep shrunk from k = {k_min}..{k_max} to {k_min}..{hi}: {n} trials with "
-                      f"{distinct} distinct (pv, sparc) points allow at most k = {hi}", UserWarning, stacklevel=2)
+        warnings.warn(
+            f"silhouette sweep shrunk from k = {k_min}..{k_max} to {k_min}..{hi}: {n} trials with "
+            f"{distinct} distinct (pv, sparc) points allow at most k = {hi}",
+            UserWarning,
+            stacklevel=2,
+        )
     ks = list(range(k_min, hi + 1))
-    results = {k: fit_prototypes(df, k, method=method, scaling=scaling, random_state=random_state,
-                                 n_init=n_init) for k in (progress(ks, "silhouette") if progress else ks)}
+    results = {
+        k: fit_prototypes(df, k, method=method, scaling=scaling, random_state=random_state, n_init=n_init)
+        for k in (progress(ks, "silhouette") if progress else ks)
+    }
     return SilhouetteSweep(results=results, requested=(int(k_min), int(k_max)))
 
 
-def seed_stability(data: pd.DataFrame, k: int = DEFAULT_K, *, seeds: Iterable[int] = range(1, 11),
-                   method: Method = "kmeans", scaling: Scaling = "raw", random_state: int = 0,
-                   n_init: int = 10) -> np.ndarray:
+def seed_stability(
+    data: pd.DataFrame,
+    k: int = DEFAULT_K,
+    *,
+    seeds: Iterable[int] = range(1, 11),
+    method: Method = "kmeans",
+    scaling: Scaling = "raw",
+    random_state: int = 0,
+    n_init: int = 10,
+) -> np.ndarray:
     """Adjusted Rand index (Hubert & Arabie 1985; ``sklearn.metrics.adjusted_rand_score``) of the labels
     fitted with each of ``seeds`` against the reference fit with ``random_state``; one value per seed.
     1 means the same partition; about 0 is chance agreement. Use ``n_init=1`` to see single-start
     variability of K-means.
     """
     ref = fit_prototypes(data, k, method=method, scaling=scaling, random_state=random_state, n_init=n_init)
-    return np.array([adjusted_rand_score(ref.labels, fit_prototypes(
-        ref.data, k, method=method, scaling=scaling, random_state=int(s), n_init=n_init).labels)
-        for s in seeds])
+    return np.array(
+        [
+            adjusted_rand_score(
+                ref.labels,
+                fit_prototypes(ref.data, k, method=method, scaling=scaling, random_state=int(s), n_init=n_init).labels,
+            )
+            for s in seeds
+        ]
+    )
 
 
 @_single_threaded
-def bootstrap_stability(data: pd.DataFrame, k: int = DEFAULT_K, *, n_boot: int = 50,
-                        method: Method = "kmeans", scaling: Scaling = "raw", random_state: int = 0,
-                        n_init: int = 10) -> np.ndarray:
+def bootstrap_stability(
+    data: pd.DataFrame,
+    k: int = DEFAULT_K,
+    *,
+    n_boot: int = 50,
+    method: Method = "kmeans",
+    scaling: Scaling = "raw",
+    random_state: int = 0,
+    n_init: int = 10,
+) -> np.ndarray:
     """Adjusted Rand index of bootstrap refits against the full-data labels; one value per resample.
 
     Each resample draws n trials with replacement (``numpy.random.default_rng(random_state)``), refits the

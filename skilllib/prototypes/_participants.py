@@ -15,6 +15,7 @@ strategy. This module measures which it is:
 * :func:`between_participant_share`: the share of a feature's variance between participants' means
   (eta squared of a one-way layout), i.e. how much of PV or SPARC is a property of the person.
 """
+
 from __future__ import annotations
 
 from collections.abc import Sequence
@@ -43,8 +44,9 @@ def _pair(labels: Any, participants: Any) -> tuple[np.ndarray, np.ndarray]:
 def cluster_participant_table(labels: Any, participants: Any) -> pd.DataFrame:
     """Trials per cluster (rows) and participant (columns), with row and column totals (``all``)."""
     lab, par = _pair(labels, participants)
-    t = pd.crosstab(pd.Series(lab, name="cluster"), pd.Series(par, name="participant"),
-                    margins=True, margins_name="all")
+    t = pd.crosstab(
+        pd.Series(lab, name="cluster"), pd.Series(par, name="participant"), margins=True, margins_name="all"
+    )
     return t.reindex(columns=[*sort_ids(c for c in t.columns if c != "all"), "all"])
 
 
@@ -66,8 +68,9 @@ class ParticipantDependence:
         return self.nmi - self.baseline_mean
 
 
-def participant_dependence(labels: Any, participants: Any, *, n_permutations: int = N_PERMUTATIONS,
-                           seed: int = 0) -> ParticipantDependence:
+def participant_dependence(
+    labels: Any, participants: Any, *, n_permutations: int = N_PERMUTATIONS, seed: int = 0
+) -> ParticipantDependence:
     """NMI between the clusters and the participants with a permutation baseline
     (``numpy.random.default_rng(seed)``); see :class:`ParticipantDependence`."""
     lab, par = _pair(labels, participants)
@@ -76,16 +79,27 @@ def participant_dependence(labels: Any, participants: Any, *, n_permutations: in
     observed = normalized_mutual_info_score(par, lab)
     rng = np.random.default_rng(seed)
     base = np.array([normalized_mutual_info_score(rng.permutation(par), lab) for _ in range(n_permutations)])
-    return ParticipantDependence(float(observed), float(base.mean()), float(np.quantile(base, 0.95)),
-                                 float((1 + np.sum(base >= observed)) / (1 + n_permutations)), int(n_permutations))
+    return ParticipantDependence(
+        float(observed),
+        float(base.mean()),
+        float(np.quantile(base, 0.95)),
+        float((1 + np.sum(base >= observed)) / (1 + n_permutations)),
+        int(n_permutations),
+    )
 
 
 def cluster_composition(labels: Any, participants: Any) -> pd.DataFrame:
     """Per cluster: ``trials``, ``participants`` (how many contribute), ``largest`` (the participant with most
     trials in it) and ``largest share`` (that participant's share of the cluster)."""
     t = cluster_participant_table(labels, participants).drop(index="all", columns="all")
-    return pd.DataFrame({"trials": t.sum(axis=1), "participants": (t > 0).sum(axis=1),
-                         "largest": t.idxmax(axis=1), "largest share": t.max(axis=1) / t.sum(axis=1)})
+    return pd.DataFrame(
+        {
+            "trials": t.sum(axis=1),
+            "participants": (t > 0).sum(axis=1),
+            "largest": t.idxmax(axis=1),
+            "largest share": t.max(axis=1) / t.sum(axis=1),
+        }
+    )
 
 
 def participant_spread(labels: Any, participants: Any) -> pd.DataFrame:
@@ -97,8 +111,16 @@ def participant_spread(labels: Any, participants: Any) -> pd.DataFrame:
     k = t.shape[1]
     with np.errstate(divide="ignore", invalid="ignore"):
         h = -np.nansum(np.where(p > 0, p * np.log(p), 0.0), axis=1) / np.log(k) if k > 1 else np.zeros(len(t))
-    return pd.DataFrame({"trials": t.sum(axis=1), "clusters": (t > 0).sum(axis=1), "main cluster": t.idxmax(axis=1),
-                         "main share": p.max(axis=1), "entropy": h}, index=t.index)
+    return pd.DataFrame(
+        {
+            "trials": t.sum(axis=1),
+            "clusters": (t > 0).sum(axis=1),
+            "main cluster": t.idxmax(axis=1),
+            "main share": p.max(axis=1),
+            "entropy": h,
+        },
+        index=t.index,
+    )
 
 
 def between_participant_share(data: pd.DataFrame, columns: Sequence[str] = ("pv", "sparc")) -> pd.Series:

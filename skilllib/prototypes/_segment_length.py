@@ -21,6 +21,7 @@ The functions here measure that dependence and offer ways to look past it:
 * :func:`adjusted_sparc`: SPARC with its least-squares dependence on covariates removed (the residual
   plus the mean), a smoothness feature uncorrelated with them across the given trials.
 """
+
 from __future__ import annotations
 
 from collections.abc import Sequence
@@ -86,8 +87,7 @@ def adjusted_sparc(data: pd.DataFrame, covariates: Sequence[str] = ("log_duratio
     uncorrelated with each of them over these trials. A descriptive adjustment of this data set (the fit
     is made on it), not a property of one movement."""
     y = _design(data, ["sparc"])[:, 1]
-    return pd.Series(_residual(y, _design(data, covariates)) + y.mean(), index=data.index,
-                     name="sparc_adjusted")
+    return pd.Series(_residual(y, _design(data, covariates)) + y.mean(), index=data.index, name="sparc_adjusted")
 
 
 def sparc_by_length(features: pd.DataFrame, edges: Sequence[int] = LENGTH_EDGES) -> pd.DataFrame:
@@ -96,7 +96,13 @@ def sparc_by_length(features: pd.DataFrame, edges: Sequence[int] = LENGTH_EDGES)
     f = features[features["status"] != "invalid"]
     bins = pd.cut(f["n"].astype(float), list(edges))
     g = f.groupby(bins, observed=True)
-    out = pd.DataFrame({"trials": g.size(), "SPARC median": g["sparc"].median(), "SPARC SD": g["sparc"].std(),
-                        "capped share": g["sparc_capped"].mean()})
+    out = pd.DataFrame(
+        {
+            "trials": g.size(),
+            "SPARC median": g["sparc"].median(),
+            "SPARC SD": g["sparc"].std(),
+            "capped share": g["sparc_capped"].mean(),
+        }
+    )
     out.index = out.index.astype(str)
     return out.rename_axis("segment samples")

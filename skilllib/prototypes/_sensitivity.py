@@ -12,6 +12,7 @@ depend on SPARC, so every setting clusters the same trials.
 
 The chapters (1 and 3) and ``python -m skilllib run --sensitivity`` call it.
 """
+
 from __future__ import annotations
 
 import warnings
@@ -23,10 +24,10 @@ import numpy as np
 import pandas as pd
 from sklearn.metrics import adjusted_rand_score
 
-from . import _kmeans as pt
-from ..recordings import Recordings
 from ..features import select, trial_features
+from ..recordings import Recordings
 from ..smoothness import SPARC_PARAMS
+from . import _kmeans as pt
 
 #: The settings the book compares: its own (the paper's 0-20 Hz) first, then the authors' Python default.
 DEFAULT_SETTINGS: tuple[dict[str, float], ...] = ({"fc": 20.0}, {"fc": 10.0})
@@ -98,18 +99,26 @@ class SparcSensitivity:
         for run in self.runs:
             s = run.selected
             rows[run.label] = {
-                "selected": len(s), "capped": run.n_capped,
+                "selected": len(s),
+                "capped": run.n_capped,
                 "capped share": run.n_capped / len(s) if len(s) else np.nan,
-                "SPARC mean": s["sparc"].mean(), "SPARC SD": s["sparc"].std(),
+                "SPARC mean": s["sparc"].mean(),
+                "SPARC SD": s["sparc"].std(),
                 "corr(SPARC, duration)": _corr(s["sparc"], s["duration"]),
                 f"silhouette, k = {self.k}": run.fit.silhouette if run.fit is not None else np.nan,
-                "valid k": run.sweep.valid_ks() if run.sweep is not None else []}
+                "valid k": run.sweep.valid_ks() if run.sweep is not None else [],
+            }
         return pd.DataFrame.from_dict(rows, orient="index").rename_axis("setting")
 
     def silhouettes(self) -> pd.DataFrame:
         """Average silhouette per k (rows) under every setting (columns)."""
-        return pd.DataFrame({run.label: pd.Series(dict(zip(run.sweep.ks, run.sweep.scores)))
-                             for run in self.runs if run.sweep is not None}).rename_axis("k")
+        return pd.DataFrame(
+            {
+                run.label: pd.Series(dict(zip(run.sweep.ks, run.sweep.scores)))
+                for run in self.runs
+                if run.sweep is not None
+            }
+        ).rename_axis("k")
 
     def comparison(self) -> pd.DataFrame:
         """Every other setting against the reference: trials whose SPARC changes (``changed``, beyond
@@ -119,15 +128,17 @@ class SparcSensitivity:
         ref = self.reference
         rows = {}
         for run in self.runs[1:]:
-            d = (run.selected["sparc"].to_numpy() - ref.selected["sparc"].to_numpy())
+            d = run.selected["sparc"].to_numpy() - ref.selected["sparc"].to_numpy()
             both = ref.fit is not None and run.fit is not None
             rows[run.label] = {
-                "changed": int(np.sum(np.abs(d) > CHANGE_TOL)), "of": len(d),
+                "changed": int(np.sum(np.abs(d) > CHANGE_TOL)),
+                "of": len(d),
                 "mean |change|": float(np.mean(np.abs(d))) if len(d) else np.nan,
                 "max |change|": float(np.max(np.abs(d))) if len(d) else np.nan,
                 "reference SD": float(ref.selected["sparc"].std()),
                 "ARI": adjusted_rand_score(ref.fit.labels, run.fit.labels) if both else np.nan,
-                "prototypes kept": len(run.prototype_ids() & ref.prototype_ids()) if both else 0}
+                "prototypes kept": len(run.prototype_ids() & ref.prototype_ids()) if both else 0,
+            }
         return pd.DataFrame.from_dict(rows, orient="index").rename_axis(f"vs {ref.label}")
 
     def prototypes(self) -> pd.DataFrame:
@@ -151,21 +162,34 @@ class SparcSensitivity:
         protos = self.prototypes()
         out = []
         for run in self.runs:
-            entry: dict[str, Any] = {"params": dict(run.params), "n_selected": len(run.selected),
-                                     "n_capped": run.n_capped,
-                                     "silhouette": run.sweep.to_dict() if run.sweep is not None else {}}
+            entry: dict[str, Any] = {
+                "params": dict(run.params),
+                "n_selected": len(run.selected),
+                "n_capped": run.n_capped,
+                "silhouette": run.sweep.to_dict() if run.sweep is not None else {},
+            }
             if run.fit is not None:
                 p = protos.loc[run.label]
-                entry["prototypes"] = [{"cluster": int(c), "participant": _py(r["participant"]),
-                                        "trial": _py(r["trial"]), "pv": float(r["pv"]),
-                                        "sparc": float(r["sparc"]), "kept": bool(r["kept"])}
-                                       for c, r in p.iterrows()]
+                entry["prototypes"] = [
+                    {
+                        "cluster": int(c),
+                        "participant": _py(r["participant"]),
+                        "trial": _py(r["trial"]),
+                        "pv": float(r["pv"]),
+                        "sparc": float(r["sparc"]),
+                        "kept": bool(r["kept"]),
+                    }
+                    for c, r in p.iterrows()
+                ]
             if run is not self.reference:
                 c = comp.loc[run.label]
-                entry["vs_reference"] = {"n_sparc_changed": int(c["changed"]),
-                                         "mean_abs_sparc_change": _num(c["mean |change|"]),
-                                         "max_abs_sparc_change": _num(c["max |change|"]),
-                                         "ari": _num(c["ARI"]), "prototypes_kept": int(c["prototypes kept"])}
+                entry["vs_reference"] = {
+                    "n_sparc_changed": int(c["changed"]),
+                    "mean_abs_sparc_change": _num(c["mean |change|"]),
+                    "max_abs_sparc_change": _num(c["max |change|"]),
+                    "ari": _num(c["ARI"]),
+                    "prototypes_kept": int(c["prototypes kept"]),
+                }
             out.append(entry)
         return {"k": self.k, "settings": out}
 
@@ -194,12 +218,17 @@ def complete_params(setting: Mapping[str, float]) -> dict[str, float]:
     return {**SPARC_PARAMS, **{key: float(v) if key != "padlevel" else int(v) for key, v in setting.items()}}
 
 
-def sparc_sensitivity(recordings: Recordings | pd.DataFrame,
-                      settings: Sequence[Mapping[str, float]] = DEFAULT_SETTINGS, *, k: int = pt.DEFAULT_K,
-                      scaling: pt.Scaling = "raw", random_state: int = 0,
-                      k_range: tuple[int, int] = pt.K_RANGE,
-                      reference: tuple[pd.DataFrame, pt.SilhouetteSweep | None] | None = None,
-                      lowpass: Any = "auto") -> SparcSensitivity:
+def sparc_sensitivity(
+    recordings: Recordings | pd.DataFrame,
+    settings: Sequence[Mapping[str, float]] = DEFAULT_SETTINGS,
+    *,
+    k: int = pt.DEFAULT_K,
+    scaling: pt.Scaling = "raw",
+    random_state: int = 0,
+    k_range: tuple[int, int] = pt.K_RANGE,
+    reference: tuple[pd.DataFrame, pt.SilhouetteSweep | None] | None = None,
+    lowpass: Any = "auto",
+) -> SparcSensitivity:
     """The clustering of the paper under each SPARC setting in ``settings`` (dicts of fc in Hz, amp_th,
     padlevel; missing keys take the book's defaults), compared with the first.
 

@@ -31,6 +31,7 @@ repeats it for every k (15 times for k = 2..16: 9.5 min at 66,800 points).
 Validity (:func:`is_valid`, :func:`failing_clusters`) of a subsample estimate is judged on the pooled
 silhouettes of all repeats with their clusters' labels and the estimate as the average line.
 """
+
 from __future__ import annotations
 
 import functools
@@ -59,10 +60,12 @@ def _single_threaded(func: _F) -> _F:
     """Run ``func`` with OpenMP and BLAS limited to one thread. K-means on a few hundred points gains
     nothing from threads and loses badly when cores are busy (sweep 0.55 s vs 7.8 s on two loaded cores); on
     68,000 points 2 threads moved centres by 1e-15 (OpenMP reduction order): one thread is also reproducible."""
+
     @functools.wraps(func)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         with _controller().limit(limits=1):
             return func(*args, **kwargs)
+
     return wrapper  # type: ignore[return-value]
 
 
@@ -121,8 +124,12 @@ class SilhouetteEstimate:
 
     def to_dict(self) -> dict[str, float]:
         """``{"mean", "sd", "min", "max"}`` as plain floats."""
-        return {"mean": self.mean, "sd": self.sd, "min": float(np.min(self.averages)),
-                "max": float(np.max(self.averages))}
+        return {
+            "mean": self.mean,
+            "sd": self.sd,
+            "min": float(np.min(self.averages)),
+            "max": float(np.max(self.averages)),
+        }
 
 
 def allocate(sizes: np.ndarray, sample_size: int, minimum: int = SILHOUETTE_MIN_PER_CLUSTER) -> np.ndarray:
@@ -136,9 +143,9 @@ def allocate(sizes: np.ndarray, sample_size: int, minimum: int = SILHOUETTE_MIN_
     return np.minimum(np.maximum(m, minimum), sizes)
 
 
-def subsample_silhouette(z: np.ndarray, labels: np.ndarray, random_state: int | None, *,
-                         sample_size: int, repeats: int, exact_max: int
-                         ) -> tuple[np.ndarray, SilhouetteEstimate]:
+def subsample_silhouette(
+    z: np.ndarray, labels: np.ndarray, random_state: int | None, *, sample_size: int, repeats: int, exact_max: int
+) -> tuple[np.ndarray, SilhouetteEstimate]:
     """Pooled per-point silhouettes of ``repeats`` stratified subsamples and the estimate (module doc).
 
     ``z``: (n, d) points in the clustering space; ``labels``: (n,) clusters 0..k-1, each non-empty.
@@ -155,21 +162,29 @@ def subsample_silhouette(z: np.ndarray, labels: np.ndarray, random_state: int | 
     rng = np.random.default_rng(random_state)
     rows, pooled, averages = [], [], np.empty(repeats)
     for r in range(repeats):
-        idx = np.sort(np.concatenate([mem[rng.choice(len(mem), m, replace=False)]
-                                      for mem, m in zip(members, per)]))
+        idx = np.sort(np.concatenate([mem[rng.choice(len(mem), m, replace=False)] for mem, m in zip(members, per)]))
         lab = labels[idx]
         s = silhouette_samples(z[idx], lab, metric="euclidean")
         averages[r] = float(weight @ (np.bincount(lab, weights=s, minlength=k) / np.maximum(per, 1)))
         rows.append(idx)
         pooled.append(s)
-    est = SilhouetteEstimate(n_points=len(labels), sample_size=int(sample_size), repeats=int(repeats),
-                             exact_max=int(exact_max), averages=averages, rows=np.concatenate(rows))
+    est = SilhouetteEstimate(
+        n_points=len(labels),
+        sample_size=int(sample_size),
+        repeats=int(repeats),
+        exact_max=int(exact_max),
+        averages=averages,
+        rows=np.concatenate(rows),
+    )
     return np.concatenate(pooled), est
 
 
 @_single_threaded
-def silhouette(z: np.ndarray, labels: np.ndarray, random_state: int | None = 0,
-               ) -> tuple[np.ndarray, float, SilhouetteEstimate | None]:
+def silhouette(
+    z: np.ndarray,
+    labels: np.ndarray,
+    random_state: int | None = 0,
+) -> tuple[np.ndarray, float, SilhouetteEstimate | None]:
     """Per-point silhouettes, the average silhouette and, above the threshold, the estimate's details.
 
     n <= :data:`SILHOUETTE_EXACT_MAX` (or n <= :data:`SILHOUETTE_SAMPLE`): ``silhouette_samples`` on all
@@ -181,8 +196,14 @@ def silhouette(z: np.ndarray, labels: np.ndarray, random_state: int | None = 0,
     if n <= SILHOUETTE_EXACT_MAX or n <= SILHOUETTE_SAMPLE:
         s = silhouette_samples(z, labels, metric="euclidean")
         return s, float(s.mean()), None
-    s, est = subsample_silhouette(z, labels, random_state, sample_size=SILHOUETTE_SAMPLE,
-                                  repeats=SILHOUETTE_REPEATS, exact_max=SILHOUETTE_EXACT_MAX)
+    s, est = subsample_silhouette(
+        z,
+        labels,
+        random_state,
+        sample_size=SILHOUETTE_SAMPLE,
+        repeats=SILHOUETTE_REPEATS,
+        exact_max=SILHOUETTE_EXACT_MAX,
+    )
     return s, est.mean, est
 
 
@@ -204,10 +225,20 @@ def sweep_estimate(results: Mapping[int, Any], exact_max: int) -> dict[str, Any]
     ks = sorted(int(k) for k in results)
     est = {k: results[k].silhouette_estimate for k in ks}
     if all(e is None for e in est.values()):
-        return {"method": "exact", "exact_max": int(exact_max), "n_points": len(results[ks[0]].data),
-                "sample_size": None, "repeats": None,
-                "per_k": {str(k): {"mean": float(results[k].silhouette)} for k in ks}}
+        return {
+            "method": "exact",
+            "exact_max": int(exact_max),
+            "n_points": len(results[ks[0]].data),
+            "sample_size": None,
+            "repeats": None,
+            "per_k": {str(k): {"mean": float(results[k].silhouette)} for k in ks},
+        }
     e0 = next(e for e in est.values() if e is not None)
-    return {"method": "subsample", "exact_max": e0.exact_max, "n_points": e0.n_points,
-            "sample_size": e0.sample_size, "repeats": e0.repeats,
-            "per_k": {str(k): e.to_dict() for k, e in est.items() if e is not None}}
+    return {
+        "method": "subsample",
+        "exact_max": e0.exact_max,
+        "n_points": e0.n_points,
+        "sample_size": e0.sample_size,
+        "repeats": e0.repeats,
+        "per_k": {str(k): e.to_dict() for k, e in est.items() if e is not None},
+    }

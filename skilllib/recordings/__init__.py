@@ -7,46 +7,51 @@ Parquet (``_parquet``), C3D (``_c3d``), TRC (``_trc``), folders of trials (``_fo
 the book's frame (``_mapping``) and time stamps (``_timing``: the rate, jitter, dropped frames, gaps).
 Problems with a file raise :class:`DataFormatError`; problems with a trial mark it ``invalid``.
 """
+
 import lazy_loader as _lazy
 
 __getattr__, __dir__, __all__ = _lazy.attach(
     __name__,
     submod_attrs={
-        "_c3d": [
-            "read_c3d"
-        ],
-        "_checks": [
-            "check_corpus_units", "corpus_rate", "MAX_RANGE_M", "MAX_TYPICAL_SPEED", "MIN_SAMPLES"
-        ],
+        "_c3d": ["read_c3d"],
+        "_checks": ["check_corpus_units", "corpus_rate", "MAX_RANGE_M", "MAX_TYPICAL_SPEED", "MIN_SAMPLES"],
         "_csv": ["read_table", "record_lines"],
         "_errors": ["DataFormatError", "MAX_QUOTE", "quote"],
-        "_folder": [
-            "FileProblem", "read_folder"
-        ],
-        "_load": [
-            "load_recordings", "read_any", "read_csv_table"
-        ],
+        "_folder": ["FileProblem", "read_folder"],
+        "_load": ["load_recordings", "read_any", "read_csv_table"],
         "_mapping": [
-            "contact_from_height", "map_frame", "parse_columns", "UNIT_FACTORS", "up_axis_rotation",
-            "UP_AXIS_ROTATIONS"
+            "contact_from_height",
+            "map_frame",
+            "parse_columns",
+            "UNIT_FACTORS",
+            "up_axis_rotation",
+            "UP_AXIS_ROTATIONS",
         ],
-        "_parquet": [
-            "is_parquet", "parquet_files", "read_parquet"
-        ],
+        "_parquet": ["is_parquet", "parquet_files", "read_parquet"],
         "_recordings": [
-            "COLUMNS", "format_recordings", "natural_key", "read_recordings", "Recordings",
-            "recordings_from_frame", "sort_ids", "write_recordings"
+            "COLUMNS",
+            "format_recordings",
+            "natural_key",
+            "read_recordings",
+            "Recordings",
+            "recordings_from_frame",
+            "sort_ids",
+            "write_recordings",
         ],
-        "_runs": [
-            "first_true", "Runs"
-        ],
+        "_runs": ["first_true", "Runs"],
         "_timing": [
-            "Irregularity", "irregularity", "JITTER_TOLERANCE", "MAX_GAP_INTERVALS", "MIN_RATE_HZ",
-            "MIXED_FRACTION", "RATE_TOLERANCE", "regular_mean_interval", "resample_uniform",
-            "time_unit_advice", "TRIM"
+            "Irregularity",
+            "irregularity",
+            "JITTER_TOLERANCE",
+            "MAX_GAP_INTERVALS",
+            "MIN_RATE_HZ",
+            "MIXED_FRACTION",
+            "RATE_TOLERANCE",
+            "regular_mean_interval",
+            "resample_uniform",
+            "time_unit_advice",
+            "TRIM",
         ],
-        "_trc": [
-            "read_trc", "write_trc"
-        ],
+        "_trc": ["read_trc", "write_trc"],
     },
 )

@@ -44,6 +44,7 @@ Rules of :func:`read_c3d` (one file = one trial):
     caller applies the height rule (:func:`skilllib.recordings.map_frame` with
     ``contact_height``); when it was given, an error lists the analog channels and events.
 """
+
 from __future__ import annotations
 
 import io
@@ -92,8 +93,9 @@ def _read(path: Path):
         msg = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
         raise DataFormatError(f"{path}: not a readable C3D file ({msg[:200]})") from None
     if len(frames) < expected:
-        raise DataFormatError(f"{path}: file cut short: the header announces {expected} frames, the data hold "
-                              f"{len(frames)}")
+        raise DataFormatError(
+            f"{path}: file cut short: the header announces {expected} frames, the data hold {len(frames)}"
+        )
     if not frames:
         raise DataFormatError(f"{path}: no frames in the file")
     return reader, frames
@@ -132,8 +134,14 @@ def _contact_from_event(t: np.ndarray, t_event: float, rate: float) -> np.ndarra
     return (t >= t_event - EVENT_TOLERANCE / rate).astype(float)
 
 
-def read_c3d(path: str | Path, *, marker: str | None = None, contact_channel: str | None = None,
-             contact_threshold: float | None = None, units: str | None = None) -> pd.DataFrame:
+def read_c3d(
+    path: str | Path,
+    *,
+    marker: str | None = None,
+    contact_channel: str | None = None,
+    contact_threshold: float | None = None,
+    units: str | None = None,
+) -> pd.DataFrame:
     """One marker of a C3D file as one trial: columns ``t`` (s), ``x, y, z`` (m, the file's axes), ``contact``.
 
     ``contact`` is 0/1 from an analog channel or event named ``contact_channel`` (default ``"contact"``
@@ -171,8 +179,9 @@ def read_c3d(path: str | Path, *, marker: str | None = None, contact_channel: st
     return pd.DataFrame({"t": t, "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2], "contact": contact})
 
 
-def _contact(reader, frames, path: Path, t: np.ndarray, rate: float, contact_channel: str | None,
-             threshold: float | None) -> np.ndarray:
+def _contact(
+    reader, frames, path: Path, t: np.ndarray, rate: float, contact_channel: str | None, threshold: float | None
+) -> np.ndarray:
     name = (contact_channel if contact_channel is not None else DEFAULT_CONTACT_CHANNEL).strip().lower()
     analog_labels = _texts(reader, "ANALOG:LABELS")
     hits = [i for i, lab in enumerate(analog_labels) if lab.lower() == name]
@@ -182,12 +191,15 @@ def _contact(reader, frames, path: Path, t: np.ndarray, rate: float, contact_cha
     ev_labels = _texts(reader, "EVENT:LABELS")
     param = reader.get("EVENT:TIMES")
     times = np.asarray(param.float_array, dtype=float).reshape(-1, 2) if param is not None else np.zeros((0, 2))
-    ev_times = [60 * times[i, 0] + times[i, 1] for i, lab in enumerate(ev_labels)
-                if lab.lower() == name and i < len(times)]
+    ev_times = [
+        60 * times[i, 0] + times[i, 1] for i, lab in enumerate(ev_labels) if lab.lower() == name and i < len(times)
+    ]
     if ev_times:
         return _contact_from_event(t, min(ev_times), rate)
     if contact_channel is None:
         return np.full(len(t), NO_CONTACT)
     events = ", ".join(sorted(set(ev_labels))) or "none"
-    raise DataFormatError(f"{path}: no analog channel or event {contact_channel!r} (analog channels: "
-                          f"{', '.join(analog_labels) or 'none'}; events: {events})")
+    raise DataFormatError(
+        f"{path}: no analog channel or event {contact_channel!r} (analog channels: "
+        f"{', '.join(analog_labels) or 'none'}; events: {events})"
+    )

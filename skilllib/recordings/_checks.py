@@ -12,13 +12,13 @@ per-trial computation (tests compare them); a trial whose regular mean interval 
 common two steps (dropped frames, jitter of a sizeable fraction of the interval) is computed by
 regular_mean_interval itself.
 """
+
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-
 import pandas as pd
 
 from . import _timing as timing
@@ -32,15 +32,23 @@ MAX_TYPICAL_SPEED = 20.0  #: m/s; a typical (median over trials of the 95th perc
 POSITION_COLUMNS = ("x", "y", "z")
 
 
-def trial_problem(t: np.ndarray, pos: np.ndarray, contact: np.ndarray, rows: np.ndarray,
-                  line: Callable[[int], int], loc: Callable[[int], str]) -> str:
+def trial_problem(
+    t: np.ndarray,
+    pos: np.ndarray,
+    contact: np.ndarray,
+    rows: np.ndarray,
+    line: Callable[[int], int],
+    loc: Callable[[int], str],
+) -> str:
     """Reason why one trial's samples are unusable ('' when fine); time/units checks come later.
     ``rows``: the trial's rows (kept-row numbers, ascending); ``line(r)``/``loc(r)`` name row r."""
     n = len(rows)
     if rows[-1] - rows[0] + 1 != n:
         gap = int(np.flatnonzero(np.diff(rows) > 1)[0])
-        return (f"rows not contiguous: {loc(rows[0])} to {line(rows[gap])} and from {loc(rows[gap + 1])} "
-                f"on belong to it, with other rows between")
+        return (
+            f"rows not contiguous: {loc(rows[0])} to {line(rows[gap])} and from {loc(rows[gap + 1])} "
+            f"on belong to it, with other rows between"
+        )
     if n < MIN_SAMPLES:
         return f"too few samples ({n}; need at least {MIN_SAMPLES})"
     if np.isnan(t).any():
@@ -63,8 +71,15 @@ def trial_problem(t: np.ndarray, pos: np.ndarray, contact: np.ndarray, rows: np.
     return ""
 
 
-def trial_problems(t: np.ndarray, pos: np.ndarray, contact: np.ndarray, trial_of_row: np.ndarray,
-                   rows: list[np.ndarray], line: Callable[[int], int], loc: Callable[[int], str]) -> list[str]:
+def trial_problems(
+    t: np.ndarray,
+    pos: np.ndarray,
+    contact: np.ndarray,
+    trial_of_row: np.ndarray,
+    rows: list[np.ndarray],
+    line: Callable[[int], int],
+    loc: Callable[[int], str],
+) -> list[str]:
     """:func:`trial_problem` of every trial: ``trial_of_row`` (R,) the trial number of each row,
     ``rows[i]`` the rows of trial i (ascending). Flags over the flat arrays find the trials with a
     problem; only those are looked at one by one, for their reason."""
@@ -109,8 +124,9 @@ def trial_stats(t: np.ndarray, pos: np.ndarray, runs: Runs, which: np.ndarray) -
         med = np.median(d, axis=1)
         mean = d.mean(axis=1)
         # regular_mean_interval's two steps when every interval lies in both windows; else its own loop
-        common = (np.abs(d - med[:, None]) <= TRIM * med[:, None]).all(axis=1) & \
-                 (np.abs(d - mean[:, None]) <= TRIM * mean[:, None]).all(axis=1)
+        common = (np.abs(d - med[:, None]) <= TRIM * med[:, None]).all(axis=1) & (
+            np.abs(d - mean[:, None]) <= TRIM * mean[:, None]
+        ).all(axis=1)
         for k in np.flatnonzero(~common):
             mean[k] = regular_mean_interval(t[rows[k]])
         p = pos[rows]
@@ -133,26 +149,27 @@ def corpus_rate(source: str, med_dt: np.ndarray, mean_dt: np.ndarray) -> tuple[f
     if off.sum() > MIXED_FRACTION * ok.sum():
         rates = pd.Series(np.round(1 / mean_dt[ok], 1)).value_counts()
         desc = ", ".join(f"{n} trials at {hz:g} Hz" for hz, n in rates.head(4).items())
-        raise DataFormatError(f"{source}: mixed sampling rates ({desc}); split the file by rate or "
-                              f"resample every trial to one rate")
+        raise DataFormatError(
+            f"{source}: mixed sampling rates ({desc}); split the file by rate or resample every trial to one rate"
+        )
     return ref, float(np.median(mean_dt[ok & ~off]))
 
 
-def _check_rates(source: str, stats: TrialStats, reasons: list[str],
-                 rate: tuple[float, float] | None = None) -> float:
+def _check_rates(source: str, stats: TrialStats, reasons: list[str], rate: tuple[float, float] | None = None) -> float:
     """Time units and mixed rates (errors, unless ``rate`` is given), single off-rate trials (invalid);
     returns the sampling interval in s. ``stats``: NaN for the trials not usable."""
     med_dt, mean_dt = stats.med_dt, stats.mean_dt
     ref, dt = corpus_rate(source, med_dt, mean_dt) if rate is None else rate
     off = np.abs(med_dt / ref - 1) > RATE_TOLERANCE  # NaN compares False
     for i in np.flatnonzero(off):
-        reasons[i] = (f"sampled at {1 / mean_dt[i]:.1f} Hz, the file at {1 / dt:.1f} Hz "
-                      f"(mean interval {mean_dt[i]:.4f} s vs {dt:.4f} s)")
+        reasons[i] = (
+            f"sampled at {1 / mean_dt[i]:.1f} Hz, the file at {1 / dt:.1f} Hz "
+            f"(mean interval {mean_dt[i]:.4f} s vs {dt:.4f} s)"
+        )
     return dt
 
 
-def _check_units(source: str, stats: TrialStats, reasons: list[str], dt: float,
-                 corpus_checked: bool = False) -> None:
+def _check_units(source: str, stats: TrialStats, reasons: list[str], dt: float, corpus_checked: bool = False) -> None:
     """Positions in millimetres (or centimetres) raise (unless ``corpus_checked``: the caller checked the
     whole corpus, :func:`check_corpus_units`); a single trial with a huge span is invalid."""
     idx = np.array([i for i in range(len(reasons)) if not reasons[i]], dtype=np.int64)
@@ -174,4 +191,5 @@ def check_corpus_units(source: str, span: np.ndarray, speed95: np.ndarray) -> No
             f"{source}: positions look like millimetres or centimetres, not metres (a typical trial spans "
             f"{np.median(span):.3g} and moves at up to {np.median(speed95):.3g} per s; a hand-held device spans "
             f"well under {MAX_RANGE_M:g} m): write x, y, z in metres (divide millimetres by 1000, centimetres by "
-            f"100), or give the unit: --units mm")
+            f"100), or give the unit: --units mm"
+        )

@@ -6,19 +6,18 @@ quoted cell spanning lines counts all of them), so that a message names the line
 Compressed files are opened as pandas opens them (``.gz``, ``.bz2``, ``.zip``, ``.xz``, ``.zst``).
 :class:`DataFormatError` is defined here and re-exported by :mod:`skilllib.recordings`.
 """
+
 from __future__ import annotations
 
 import csv
 import io
 import re
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 import pandas as pd
 
-from ._errors import DataFormatError, quote
-
+from ._errors import DataFormatError
 
 
 def _read_text(path: Path) -> str:
@@ -34,8 +33,9 @@ def _read_text(path: Path) -> str:
         with get_handle(path, "r", encoding="utf-8-sig", compression="infer") as h:
             return h.handle.read()
     except UnicodeDecodeError:
-        raise DataFormatError(f"{path}: not a text (UTF-8) CSV file (compressed files need their "
-                              f"extension: .gz, .bz2, .zip, .xz, .zst)") from None
+        raise DataFormatError(
+            f"{path}: not a text (UTF-8) CSV file (compressed files need their extension: .gz, .bz2, .zip, .xz, .zst)"
+        ) from None
     except (OSError, EOFError, ValueError) as e:  # a damaged archive
         raise DataFormatError(f"{path}: cannot be decompressed: {e}") from None
 
@@ -62,8 +62,9 @@ def read_table(path: str | Path) -> tuple[pd.DataFrame, np.ndarray]:
     if not text.strip():
         raise DataFormatError(f"{path}: file is empty")
     try:
-        df = pd.read_csv(io.StringIO(text), dtype=str, keep_default_na=False, skip_blank_lines=False,
-                         skipinitialspace=True)
+        df = pd.read_csv(
+            io.StringIO(text), dtype=str, keep_default_na=False, skip_blank_lines=False, skipinitialspace=True
+        )
     except pd.errors.ParserError as e:  # e.g. "Expected 7 fields in line 12, saw 8"
         msg = str(e).replace("Error tokenizing data. C error: ", "").strip()
         m = re.search(r"in line (\d+)", msg)
@@ -74,9 +75,10 @@ def read_table(path: str | Path) -> tuple[pd.DataFrame, np.ndarray]:
                 msg = msg.replace(m.group(0), f"in line {lines[rec]}")
         raise DataFormatError(f"{path}: not a valid CSV table: {msg}") from None
     except pd.errors.EmptyDataError:  # text is not blank (checked above): a blank line before the header
-        raise DataFormatError(f"{path}: no column names on line 1: the header must be the first line, "
-                              f"not after blank lines") from None
-    lines = record_lines(text)[:len(df)]
+        raise DataFormatError(
+            f"{path}: no column names on line 1: the header must be the first line, not after blank lines"
+        ) from None
+    lines = record_lines(text)[: len(df)]
     return df, lines
 
 
@@ -95,12 +97,15 @@ def _count_lines(path: Path) -> int:
     return n + (last != b"\n")
 
 
-def read_plain(path: str | Path, text_columns: tuple[str, ...], number_columns: tuple[str, ...],
-               na_text: frozenset[str]) -> pd.DataFrame | None:
+def read_plain(
+    path: str | Path, text_columns: tuple[str, ...], number_columns: tuple[str, ...], na_text: frozenset[str]
+) -> pd.DataFrame | None:
     """The columns of a plain CSV file (one record per line, no blank line), read by pyarrow's
-    multi-threaded CSV reader: ``text_columns`` as text exactly as written, ``number_columns`` as float64 (``na_text`` cells
+    multi-threaded CSV reader: ``text_columns`` as text exactly as written, ``number_columns`` as float64
+    (``na_text`` cells
     as NaN). None when the file is compressed, not plain, lacks one of the columns, or any cell does not
-    parse, or a record is not one line (blank lines, line breaks inside quotes): the caller then reads it with :func:`read_table`, whose messages name the line and column.
+    parse, or a record is not one line (blank lines, line breaks inside quotes): the caller then reads it
+    with :func:`read_table`, whose messages name the line and column.
     The rows are the file's lines 2, 3, ... in order."""
     import pyarrow as pa
     import pyarrow.csv as pacsv
@@ -114,18 +119,25 @@ def read_plain(path: str | Path, text_columns: tuple[str, ...], number_columns: 
     if len(set(header)) != len(header) or any(c not in header for c in wanted):
         return None
     types = {**{c: pa.string() for c in text_columns}, **{c: pa.float64() for c in number_columns}}
-    convert = pacsv.ConvertOptions(column_types=types, include_columns=list(wanted),
-                                   null_values=sorted(na_text), strings_can_be_null=False,
-                                   quoted_strings_can_be_null=False)
+    convert = pacsv.ConvertOptions(
+        column_types=types,
+        include_columns=list(wanted),
+        null_values=sorted(na_text),
+        strings_can_be_null=False,
+        quoted_strings_can_be_null=False,
+    )
     n_rows = _count_lines(path) - 1
     if n_rows < 1:  # a header alone: read_table says so
         return None
     from ._parquet import frame_from_batches
 
     try:
-        with pacsv.open_csv(path, read_options=pacsv.ReadOptions(block_size=1 << 23),
-                            parse_options=pacsv.ParseOptions(newlines_in_values=False),
-                            convert_options=convert) as reader:
+        with pacsv.open_csv(
+            path,
+            read_options=pacsv.ReadOptions(block_size=1 << 23),
+            parse_options=pacsv.ParseOptions(newlines_in_values=False),
+            convert_options=convert,
+        ) as reader:
             # None when the rows are not the lines: a blank line (pyarrow skips it) would shift line numbers
             return frame_from_batches(reader, n_rows, text_columns, number_columns)
     except (pa.ArrowInvalid, pa.ArrowTypeError, UnicodeDecodeError, OSError):

@@ -19,6 +19,7 @@ natural order (``P2`` before ``P10``; ids equal as numbers, like ``01`` and ``1`
 not give them) for the caller to list as invalid trials. It raises only when the options are wrong or
 no file at all can be read.
 """
+
 from __future__ import annotations
 
 import re
@@ -29,8 +30,8 @@ from typing import NamedTuple
 import numpy as np
 import pandas as pd
 
-from ._errors import DataFormatError
 from ._c3d import read_c3d
+from ._errors import DataFormatError
 from ._mapping import map_frame, rename_columns, unit_factor, up_axis_rotation
 from ._trc import read_trc
 
@@ -90,8 +91,10 @@ def trial_ids(stem: str, folder: str | None, pattern: re.Pattern | None) -> tupl
             raise ValueError(f"name {stem!r} does not match the name pattern {pattern.pattern!r}")
         participant = m.groupdict().get("participant") or folder
         if not participant:
-            raise ValueError(f"name pattern {pattern.pattern!r} gives no participant for {stem!r} and the file "
-                             f"is not in a participant's sub-folder")
+            raise ValueError(
+                f"name pattern {pattern.pattern!r} gives no participant for {stem!r} and the file "
+                f"is not in a participant's sub-folder"
+            )
         if not m.group("trial"):
             raise ValueError(f"name pattern {pattern.pattern!r} gives an empty trial for {stem!r}")
         return participant, m.group("trial")
@@ -99,8 +102,10 @@ def trial_ids(stem: str, folder: str | None, pattern: re.Pattern | None) -> tupl
         return folder, stem
     participant, sep, trial = stem.rpartition("_")
     if not sep or not participant or not trial:
-        raise ValueError(f"cannot tell participant and trial from the name {stem!r}: name it PARTICIPANT_TRIAL, "
-                         f"put it in a sub-folder named after the participant, or give a name pattern")
+        raise ValueError(
+            f"cannot tell participant and trial from the name {stem!r}: name it PARTICIPANT_TRIAL, "
+            f"put it in a sub-folder named after the participant, or give a name pattern"
+        )
     return participant, trial
 
 
@@ -116,28 +121,45 @@ def read_trial_csv(path: Path, *, columns: Mapping[str, str] | None = None) -> p
     with participant or trial columns holds several trials and is refused."""
     try:
         df = pd.read_csv(path, skipinitialspace=True)
-    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError, OSError, ValueError,
-            ImportError) as e:  # ImportError: .csv.zst without the zstandard package
+    except (
+        pd.errors.ParserError,
+        pd.errors.EmptyDataError,
+        UnicodeDecodeError,
+        OSError,
+        ValueError,
+        ImportError,
+    ) as e:  # ImportError: .csv.zst without the zstandard package
         msg = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
         raise DataFormatError(f"{path}: not a readable CSV table ({msg[:200]})") from None
     df = df.rename(columns=lambda c: str(c).strip())
     ids = [c for c in df.columns if (columns or {}).get(c, c) in ("participant", "trial")]
     if ids:
-        raise DataFormatError(f"{path}: has participant/trial columns ({', '.join(ids)}); a folder holds one "
-                              f"trial per file (read a table of many trials as a CSV file, not as a folder)")
+        raise DataFormatError(
+            f"{path}: has participant/trial columns ({', '.join(ids)}); a folder holds one "
+            f"trial per file (read a table of many trials as a CSV file, not as a folder)"
+        )
     if columns:
         df = rename_columns(df, columns, str(path))
     missing = [c for c in TRIAL_COLUMNS[:4] if c not in df.columns]
     if missing:
-        raise DataFormatError(f"{path}: required column {missing[0]!r} missing (columns: {', '.join(df.columns)}); "
-                              f"rename with --columns old=new")
+        raise DataFormatError(
+            f"{path}: required column {missing[0]!r} missing (columns: {', '.join(df.columns)}); "
+            f"rename with --columns old=new"
+        )
     return df[[c for c in TRIAL_COLUMNS if c in df.columns]]
 
 
-def read_trial_file(path: str | Path, *, marker: str | None = None, contact_channel: str | None = None,
-                    contact_threshold: float | None = None, units: str | None = None,
-                    up_axis: str | None = None, contact_height: float | None = None,
-                    columns: Mapping[str, str] | None = None) -> pd.DataFrame:
+def read_trial_file(
+    path: str | Path,
+    *,
+    marker: str | None = None,
+    contact_channel: str | None = None,
+    contact_threshold: float | None = None,
+    units: str | None = None,
+    up_axis: str | None = None,
+    contact_height: float | None = None,
+    columns: Mapping[str, str] | None = None,
+) -> pd.DataFrame:
     """One C3D, TRC or per-trial CSV file as one trial in the book's frame (columns ``t, x, y, z,
     contact``; s, m, y up, 0/1 or NaN where the file's own contact flag is empty).
 
@@ -148,23 +170,25 @@ def read_trial_file(path: str | Path, *, marker: str | None = None, contact_chan
     path = Path(path)
     kind = file_kind(path)
     if kind == "c3d":
-        df = read_c3d(path, marker=marker, contact_channel=contact_channel,
-                      contact_threshold=contact_threshold, units=units)
+        df = read_c3d(
+            path, marker=marker, contact_channel=contact_channel, contact_threshold=contact_threshold, units=units
+        )
     elif kind == "trc":
         df = read_trc(path, marker=marker, units=units)
     elif kind == "csv":
         df = read_trial_csv(path, columns=columns)
     else:
         raise DataFormatError(f"{path}: not a .c3d, .trc or .csv file")
-    return map_frame(df, units=units if kind == "csv" else None, up_axis=up_axis,
-                     contact_height=contact_height, source=str(path))
+    return map_frame(
+        df, units=units if kind == "csv" else None, up_axis=up_axis, contact_height=contact_height, source=str(path)
+    )
 
 
 def _reason(e: Exception, path: Path) -> str:
     """The error's message without the leading file name (the problem names the file)."""
     msg = str(e)
     head = str(path)
-    return msg[len(head):].lstrip(":, ") if msg.startswith(head) else msg
+    return msg[len(head) :].lstrip(":, ") if msg.startswith(head) else msg
 
 
 def _scan(root: Path) -> tuple[list[tuple[Path, str | None]], list[Path]]:
@@ -183,15 +207,23 @@ def _scan(root: Path) -> tuple[list[tuple[Path, str | None]], list[Path]]:
     return found, deep
 
 
-def read_folder(path: str | Path, *, marker: str | None = None, contact_channel: str | None = None,
-                contact_threshold: float | None = None, units: str | None = None,
-                up_axis: str | None = None, contact_height: float | None = None,
-                columns: Mapping[str, str] | None = None,
-                name_pattern: str | re.Pattern | None = None) -> tuple[pd.DataFrame, list[FileProblem]]:
+def read_folder(
+    path: str | Path,
+    *,
+    marker: str | None = None,
+    contact_channel: str | None = None,
+    contact_threshold: float | None = None,
+    units: str | None = None,
+    up_axis: str | None = None,
+    contact_height: float | None = None,
+    columns: Mapping[str, str] | None = None,
+    name_pattern: str | re.Pattern | None = None,
+) -> tuple[pd.DataFrame, list[FileProblem]]:
     """Every ``.c3d``, ``.trc`` and ``.csv`` (also compressed) file of ``path`` as one trial each.
 
     Returns ``(frame, problems)``: ``frame`` is the long table ``participant, trial, t, x, y, z,
-    contact`` and ``file``, ``sample`` (the file, relative to ``path``, and the 1-based sample in it) (ids as ``str``; s; m in the book's frame; 0/1, or NaN where a file's own flag is empty),
+    contact`` and ``file``, ``sample`` (the file, relative to ``path``, and the 1-based sample in it) (ids as
+    ``str``; s; m in the book's frame; 0/1, or NaN where a file's own flag is empty),
     trials in the natural order of the module docstring, each file's rows contiguous; ``problems`` lists
     the files that could not be read (:class:`FileProblem`), in the same order (those whose names give
     no ids first), for the caller to mark those trials invalid. The options are those of
@@ -213,22 +245,36 @@ def read_folder(path: str | Path, *, marker: str | None = None, contact_channel:
     found, deep = _scan(root)
     if not found and not deep:
         raise DataFormatError(f"{root}: no .c3d, .trc or .csv files in the folder or its sub-folders")
-    opts = dict(marker=marker, contact_channel=contact_channel, contact_threshold=contact_threshold, units=units,
-                up_axis=up_axis, contact_height=contact_height, columns=columns)
+    opts = dict(
+        marker=marker,
+        contact_channel=contact_channel,
+        contact_threshold=contact_threshold,
+        units=units,
+        up_axis=up_axis,
+        contact_height=contact_height,
+        columns=columns,
+    )
     named, problems = [], []
     for p, folder in found:
         try:
             named.append((*trial_ids(file_stem(p), folder, pattern), p))
         except ValueError as e:
             problems.append(FileProblem(str(p), None, None, str(e)))
-    problems += [FileProblem(str(p), None, None, f"in a sub-sub-folder: only {root}/<participant>/<file> is read")
-                 for p in deep]
+    problems += [
+        FileProblem(str(p), None, None, f"in a sub-sub-folder: only {root}/<participant>/<file> is read") for p in deep
+    ]
     named.sort(key=lambda r: (natural_key(r[0]), natural_key(r[1]), str(r[2])))
     frames, seen = [], {}
     for participant, trial, p in named:
         if (participant, trial) in seen:
-            problems.append(FileProblem(str(p), participant, trial, f"participant {participant!r} trial {trial!r} "
-                                        f"is also {seen[participant, trial]}"))
+            problems.append(
+                FileProblem(
+                    str(p),
+                    participant,
+                    trial,
+                    f"participant {participant!r} trial {trial!r} is also {seen[participant, trial]}",
+                )
+            )
             continue
         seen[participant, trial] = p
         try:
@@ -244,8 +290,9 @@ def read_folder(path: str | Path, *, marker: str | None = None, contact_channel:
         frames.append(df)
     if not frames:
         first = problems[0]
-        raise DataFormatError(f"{root}: none of the {len(found) + len(deep)} files could be read "
-                              f"(first: {first.path}: {first.reason})")
+        raise DataFormatError(
+            f"{root}: none of the {len(found) + len(deep)} files could be read (first: {first.path}: {first.reason})"
+        )
     problems.sort(key=lambda q: (natural_key(q.participant or ""), natural_key(q.trial or ""), q.path))
     frame = pd.concat(frames, ignore_index=True)
     frame["participant"] = frame["participant"].astype(object)

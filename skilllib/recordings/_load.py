@@ -25,6 +25,7 @@ Options (the command line's flags in brackets): ``marker`` (``--marker NAME``), 
 :func:`~skilllib.recordings.parse_columns`), ``name_pattern`` (a regular expression for file names
 in a folder).
 """
+
 from __future__ import annotations
 
 import re
@@ -34,10 +35,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ._recordings import COLUMNS, NA_TEXT, POSITION_COLUMNS, Recordings, recordings_from_frame
+from ._c3d import read_c3d
 from ._csv import read_table
 from ._errors import DataFormatError, quote
-from ._c3d import read_c3d
 from ._folder import (
     FileProblem,
     compile_pattern,
@@ -56,18 +56,39 @@ from ._mapping import (
     rename_columns,
     up_axis_rotation,
 )
+from ._recordings import COLUMNS, NA_TEXT, POSITION_COLUMNS, Recordings, recordings_from_frame
 from ._trc import read_trc
 
 ID_COLUMNS = ("participant", "trial")
 #: the cells pandas reads as missing by default (pandas.read_csv ``na_values``); kept for every column but the ids
-DEFAULT_NA = ("", "#N/A", "#N/A N/A", "#NA", "-1.#IND", "-1.#QNAN", "-NaN", "-nan", "1.#IND", "1.#QNAN", "<NA>",
-              "N/A", "NA", "NULL", "NaN", "None", "n/a", "nan", "null")
+DEFAULT_NA = (
+    "",
+    "#N/A",
+    "#N/A N/A",
+    "#NA",
+    "-1.#IND",
+    "-1.#QNAN",
+    "-NaN",
+    "-nan",
+    "1.#IND",
+    "1.#QNAN",
+    "<NA>",
+    "N/A",
+    "NA",
+    "NULL",
+    "NaN",
+    "None",
+    "n/a",
+    "nan",
+    "null",
+)
 
 
 def _csv_error(path: Path, e: Exception) -> DataFormatError:
     if isinstance(e, pd.errors.ParserError):  # e.g. "Expected 7 fields in line 12, saw 8"
-        return DataFormatError(f"{path}: not a valid CSV table: "
-                               f"{str(e).replace('Error tokenizing data. C error: ', '').strip()}")
+        return DataFormatError(
+            f"{path}: not a valid CSV table: {str(e).replace('Error tokenizing data. C error: ', '').strip()}"
+        )
     if isinstance(e, pd.errors.EmptyDataError):
         return DataFormatError(f"{path}: file is empty")
     if isinstance(e, UnicodeDecodeError):
@@ -96,11 +117,22 @@ def read_csv_table(path: str | Path, *, columns: Mapping[str, str] | None = None
     try:
         names = [str(c) for c in pd.read_csv(path, nrows=0, **opts).columns]
         ids = [c for c in names if (columns or {}).get(c.strip(), c.strip()) in ID_COLUMNS]
-        df = pd.read_csv(path, dtype={c: str for c in ids}, keep_default_na=False,
-                         na_values={c: list(DEFAULT_NA) for c in names if c not in ids}, **opts)
-    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError, OSError, ValueError,
-            EOFError, ImportError) as e:  # a broken gzip, a zip of several files, .zst without zstandard, ...
-
+        df = pd.read_csv(
+            path,
+            dtype={c: str for c in ids},
+            keep_default_na=False,
+            na_values={c: list(DEFAULT_NA) for c in names if c not in ids},
+            **opts,
+        )
+    except (
+        pd.errors.ParserError,
+        pd.errors.EmptyDataError,
+        UnicodeDecodeError,
+        OSError,
+        ValueError,
+        EOFError,
+        ImportError,
+    ) as e:  # a broken gzip, a zip of several files, .zst without zstandard, ...
         raise _csv_error(path, e) from None
     if ids and len(df):
         others = [c for c in df.columns if c not in ids]
@@ -112,10 +144,18 @@ def read_csv_table(path: str | Path, *, columns: Mapping[str, str] | None = None
     return df
 
 
-def read_any(path: str | Path, *, marker: str | None = None, contact_channel: str | None = None,
-             contact_threshold: float | None = None, units: str | None = None, up_axis: str | None = None,
-             contact_height: float | None = None, columns: Mapping[str, str] | str | None = None,
-             name_pattern: str | re.Pattern | None = None) -> tuple[pd.DataFrame, list[FileProblem]]:
+def read_any(
+    path: str | Path,
+    *,
+    marker: str | None = None,
+    contact_channel: str | None = None,
+    contact_threshold: float | None = None,
+    units: str | None = None,
+    up_axis: str | None = None,
+    contact_height: float | None = None,
+    columns: Mapping[str, str] | str | None = None,
+    name_pattern: str | re.Pattern | None = None,
+) -> tuple[pd.DataFrame, list[FileProblem]]:
     """Read recordings from a folder, a ``.c3d`` or ``.trc`` file (one trial) or a CSV table (many).
 
     Returns ``(frame, problems)``: the long table in the book's frame with identifiers as text (for
@@ -133,9 +173,17 @@ def read_any(path: str | Path, *, marker: str | None = None, contact_channel: st
     path = Path(path)
     cols = parse_columns(columns) if isinstance(columns, str) else columns
     if path.is_dir():
-        return read_folder(path, marker=marker, contact_channel=contact_channel, contact_threshold=contact_threshold,
-                           units=units, up_axis=up_axis, contact_height=contact_height, columns=cols,
-                           name_pattern=name_pattern)
+        return read_folder(
+            path,
+            marker=marker,
+            contact_channel=contact_channel,
+            contact_threshold=contact_threshold,
+            units=units,
+            up_axis=up_axis,
+            contact_height=contact_height,
+            columns=cols,
+            name_pattern=name_pattern,
+        )
     kind = file_kind(path)
     if kind in ("c3d", "trc"):
         if not path.exists():
@@ -147,16 +195,23 @@ def read_any(path: str | Path, *, marker: str | None = None, contact_channel: st
             if name_pattern is not None:
                 raise DataFormatError(f"{path}: name {stem!r} does not match the name pattern") from None
             participant, trial = stem, stem
-        df = read_trial_file(path, marker=marker, contact_channel=contact_channel,
-                             contact_threshold=contact_threshold, units=units, up_axis=up_axis,
-                             contact_height=contact_height)
+        df = read_trial_file(
+            path,
+            marker=marker,
+            contact_channel=contact_channel,
+            contact_threshold=contact_threshold,
+            units=units,
+            up_axis=up_axis,
+            contact_height=contact_height,
+        )
         df.insert(0, "trial", trial)
         df.insert(0, "participant", participant)
         df[list(ID_COLUMNS)] = df[list(ID_COLUMNS)].astype(object)
         return df, []
     table = read_csv_table(path, columns=cols)
-    return map_frame(table, columns=cols, units=units, up_axis=up_axis, contact_height=contact_height,
-                     source=str(path), first_line=2), []
+    return map_frame(
+        table, columns=cols, units=units, up_axis=up_axis, contact_height=contact_height, source=str(path), first_line=2
+    ), []
 
 
 def _numeric_text(df: pd.DataFrame, lines: np.ndarray, source: str) -> pd.DataFrame:
@@ -184,10 +239,18 @@ def _numeric_text(df: pd.DataFrame, lines: np.ndarray, source: str) -> pd.DataFr
     return out
 
 
-def load_recordings(data: str | Path | pd.DataFrame | Recordings, *, columns: Mapping[str, str] | str | None = None,
-                    units: str | None = None, up_axis: str | None = None, marker: str | None = None,
-                    contact_channel: str | None = None, contact_threshold: float | None = None,
-                    contact_height: float | None = None, name_pattern: str | re.Pattern | None = None) -> Recordings:
+def load_recordings(
+    data: str | Path | pd.DataFrame | Recordings,
+    *,
+    columns: Mapping[str, str] | str | None = None,
+    units: str | None = None,
+    up_axis: str | None = None,
+    marker: str | None = None,
+    contact_channel: str | None = None,
+    contact_threshold: float | None = None,
+    contact_height: float | None = None,
+    name_pattern: str | re.Pattern | None = None,
+) -> Recordings:
     """Validated :class:`~skilllib.recordings.Recordings` from a path (folder, C3D, TRC or CSV, see
     :func:`read_any`), a DataFrame or Recordings, mapped by the options (module docstring).
 
@@ -197,8 +260,12 @@ def load_recordings(data: str | Path | pd.DataFrame | Recordings, *, columns: Ma
     reason (file name and problem), never dropped; messages about a sample of a folder's file name the
     file and the sample. Raises :class:`~skilllib.recordings.DataFormatError` for what cannot be read at all.
     """
-    opts = dict(columns=parse_columns(columns) if isinstance(columns, str) else columns, units=units,
-                up_axis=up_axis, contact_height=contact_height)
+    opts = dict(
+        columns=parse_columns(columns) if isinstance(columns, str) else columns,
+        units=units,
+        up_axis=up_axis,
+        contact_height=contact_height,
+    )
     if isinstance(data, Recordings):
         data = data.frame
     if isinstance(data, pd.DataFrame):
@@ -212,8 +279,14 @@ def load_recordings(data: str | Path | pd.DataFrame | Recordings, *, columns: Ma
         table = _numeric_text(table, lines, str(path))
         mapped = map_frame(table, units=units, up_axis=up_axis, contact_height=contact_height, source=str(path))
         return recordings_from_frame(mapped, str(path), lines=lines)
-    frame, problems = read_any(path, marker=marker, contact_channel=contact_channel,
-                               contact_threshold=contact_threshold, name_pattern=name_pattern, **opts)
+    frame, problems = read_any(
+        path,
+        marker=marker,
+        contact_channel=contact_channel,
+        contact_threshold=contact_threshold,
+        name_pattern=name_pattern,
+        **opts,
+    )
     places = None
     if "file" in frame.columns:
         places = (frame["file"].astype(str) + ", sample " + frame["sample"].astype(str)).to_numpy()
@@ -234,15 +307,42 @@ def _with_problems(rec: Recordings, problems: list[FileProblem], root: Path) -> 
         while key in rec._rows or key in extra:  # a duplicate's second file: its own entry
             key = (key[0], f"{key[1]} ({rel})")
         extra[key] = np.array([], dtype=np.int64)
-        rows.append({"participant": key[0], "trial": key[1], "n_samples": 0, "first_line": 0, "status": "invalid",
-                     "reason": f"file {rel}: {q.reason}", "timing": ""})
+        rows.append(
+            {
+                "participant": key[0],
+                "trial": key[1],
+                "n_samples": 0,
+                "first_line": 0,
+                "status": "invalid",
+                "reason": f"file {rel}: {q.reason}",
+                "timing": "",
+            }
+        )
     trials = pd.concat([rec.trials, pd.DataFrame(rows)], ignore_index=True)
-    return Recordings(frame=rec.frame, trials=trials, fs=rec.fs, source=rec.source, _rows={**rec._rows, **extra},
-                      _resampled=rec._resampled)
+    return Recordings(
+        frame=rec.frame,
+        trials=trials,
+        fs=rec.fs,
+        source=rec.source,
+        _rows={**rec._rows, **extra},
+        _resampled=rec._resampled,
+    )
 
 
 __all__ = [
-    "load_recordings", "read_any", "read_folder", "read_c3d", "read_trc", "read_csv_table", "read_trial_file", "map_frame",
-    "parse_columns", "contact_from_height", "up_axis_rotation", "FileProblem", "UNIT_FACTORS",
-    "UP_AXIS_ROTATIONS", "DataFormatError",
+    "load_recordings",
+    "read_any",
+    "read_folder",
+    "read_c3d",
+    "read_trc",
+    "read_csv_table",
+    "read_trial_file",
+    "map_frame",
+    "parse_columns",
+    "contact_from_height",
+    "up_axis_rotation",
+    "FileProblem",
+    "UNIT_FACTORS",
+    "UP_AXIS_ROTATIONS",
+    "DataFormatError",
 ]

@@ -30,6 +30,7 @@ another length unit or another vertical axis into it, in this order:
    that low has no contact sample, which :mod:`skilllib.features` reports ("no contact"). A trial with a
    contact signal keeps it: the height rule never overrides a measured flag.
 """
+
 from __future__ import annotations
 
 from collections.abc import Mapping
@@ -37,8 +38,8 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
-from ._recordings import POSITION_COLUMNS
 from ._errors import DataFormatError, quote
+from ._recordings import POSITION_COLUMNS
 
 UNIT_FACTORS: dict[str, float] = {"m": 1.0, "cm": 0.01, "mm": 0.001}  #: metres per unit
 
@@ -99,13 +100,16 @@ def rename_columns(df: pd.DataFrame, columns: Mapping[str, str], source: str = "
     have = [str(c).strip() for c in df.columns]
     missing = [old for old in columns if old not in have]
     if missing:
-        raise DataFormatError(f"{source}: --columns names column {missing[0]!r}, which the table does not have "
-                              f"(columns: {', '.join(have)})")
+        raise DataFormatError(
+            f"{source}: --columns names column {missing[0]!r}, which the table does not have "
+            f"(columns: {', '.join(have)})"
+        )
     new_names = [columns.get(c, c) for c in have]
     dup = sorted({n for n in new_names if new_names.count(n) > 1})
     if dup:
-        raise DataFormatError(f"{source}: after --columns, column {dup[0]!r} would appear twice "
-                              f"(columns: {', '.join(new_names)})")
+        raise DataFormatError(
+            f"{source}: after --columns, column {dup[0]!r} would appear twice (columns: {', '.join(new_names)})"
+        )
     out = df.copy()
     out.columns = new_names
     return out
@@ -115,8 +119,10 @@ def _positions(df: pd.DataFrame, source: str, first_line: int | None) -> np.ndar
     """x, y, z as an (N, 3) float array; a cell that is not a number raises naming its row/line."""
     missing = [c for c in POSITION_COLUMNS if c not in df.columns]
     if missing:
-        raise DataFormatError(f"{source}: required column {missing[0]!r} missing (columns: "
-                              f"{', '.join(map(str, df.columns))}); rename with --columns old=new")
+        raise DataFormatError(
+            f"{source}: required column {missing[0]!r} missing (columns: "
+            f"{', '.join(map(str, df.columns))}); rename with --columns old=new"
+        )
     out = np.empty((len(df), 3))
     for j, c in enumerate(POSITION_COLUMNS):
         col = df[c]
@@ -141,7 +147,7 @@ def contact_from_height(y: np.ndarray, contact_height: float) -> np.ndarray:
     low = np.flatnonzero(y <= contact_height)
     c = np.zeros(len(y))
     if len(low):
-        c[low[0]:] = 1.0
+        c[low[0] :] = 1.0
     return c
 
 
@@ -152,9 +158,16 @@ def _trial_keys(df: pd.DataFrame) -> pd.Series | None:
     return None
 
 
-def map_frame(df: pd.DataFrame, *, columns: Mapping[str, str] | None = None, units: str | None = None,
-              up_axis: str | None = None, contact_height: float | None = None,
-              source: str = "<DataFrame>", first_line: int | None = None) -> pd.DataFrame:
+def map_frame(
+    df: pd.DataFrame,
+    *,
+    columns: Mapping[str, str] | None = None,
+    units: str | None = None,
+    up_axis: str | None = None,
+    contact_height: float | None = None,
+    source: str = "<DataFrame>",
+    first_line: int | None = None,
+) -> pd.DataFrame:
     """``df`` in the book's frame: columns renamed, positions in m, ``y`` up, contact filled where absent.
 
     The four steps and the rotation matrices are in the module docstring. ``units`` is the unit of the
@@ -198,16 +211,24 @@ def map_frame(df: pd.DataFrame, *, columns: Mapping[str, str] | None = None, uni
     if not no_signal:
         return out
     if contact_height is None:
-        what = ("no 'contact' column" if "contact" not in out.columns else
-                f"no contact flag in {len(no_signal)} trial(s)" if keys is not None else "no contact flag")
-        raise DataFormatError(f"{source}: {what} and no contact height: give the height of the touched "
-                              f"surface (--contact-height M, in m, y up) or a contact channel")
+        what = (
+            "no 'contact' column"
+            if "contact" not in out.columns
+            else f"no contact flag in {len(no_signal)} trial(s)"
+            if keys is not None
+            else "no contact flag"
+        )
+        raise DataFormatError(
+            f"{source}: {what} and no contact height: give the height of the touched "
+            f"surface (--contact-height M, in m, y up) or a contact channel"
+        )
     pos_y = _positions(out, source, first_line)[:, 1]
     if "contact" not in out.columns:
         out["contact"] = np.nan
     # keep the column's values (a text cell that is no number stays for skilllib.recordings to report)
-    filled = out["contact"].to_numpy(dtype=float if pd.api.types.is_numeric_dtype(out["contact"]) else object,
-                                     copy=True)
+    filled = out["contact"].to_numpy(
+        dtype=float if pd.api.types.is_numeric_dtype(out["contact"]) else object, copy=True
+    )
     for k in no_signal:
         r = np.asarray(rows[k])
         filled[r] = contact_from_height(pos_y[r], float(contact_height))

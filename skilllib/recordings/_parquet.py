@@ -9,6 +9,7 @@ integer id ``1`` is the text ``"1"``), a column of text where numbers belong is 
 cell that is not a number named, a trial whose rows lie in two files has rows that are not contiguous and
 is invalid with that reason. Messages name the file and the row within it (1-based).
 """
+
 from __future__ import annotations
 
 import bisect
@@ -23,8 +24,9 @@ from ._errors import DataFormatError
 POSITIONS = ("x", "y", "z")
 
 
-def frame_from_batches(batches: Iterable, n_rows: int, text_columns: tuple[str, ...],
-                       number_columns: tuple[str, ...]) -> pd.DataFrame | None:
+def frame_from_batches(
+    batches: Iterable, n_rows: int, text_columns: tuple[str, ...], number_columns: tuple[str, ...]
+) -> pd.DataFrame | None:
     """The columns of Arrow record ``batches`` (``n_rows`` rows in all) as a DataFrame: text columns
     as Arrow-backed Series; number columns of a numeric Arrow type filled batch by batch into
     preallocated float64 arrays (nulls as NaN; x, y, z as the columns of one (R, 3) array), of another
@@ -46,7 +48,7 @@ def frame_from_batches(batches: Iterable, n_rows: int, text_columns: tuple[str, 
             col = batch.column(c)
             numeric = pa.types.is_floating(col.type) or pa.types.is_integer(col.type)
             if c in numbers and numeric:
-                numbers[c][done:done + k] = col.to_numpy(zero_copy_only=False)
+                numbers[c][done : done + k] = col.to_numpy(zero_copy_only=False)
             elif c in numbers and done == 0:  # text where numbers belong: checked by the validation
                 del numbers[c]
                 kept[c] = [col]
@@ -59,8 +61,12 @@ def frame_from_batches(batches: Iterable, n_rows: int, text_columns: tuple[str, 
         done += k
     if done != n_rows:
         return None
-    out = {c: pd.Series(pa.chunked_array(v).combine_chunks(), dtype=pd.ArrowDtype(v[0].type)) if v else
-           pd.Series([], dtype=object) for c, v in kept.items()}
+    out = {
+        c: pd.Series(pa.chunked_array(v).combine_chunks(), dtype=pd.ArrowDtype(v[0].type))
+        if v
+        else pd.Series([], dtype=object)
+        for c, v in kept.items()
+    }
     del kept
     out.update(numbers)
     release_arrow_memory()
@@ -83,8 +89,9 @@ def is_parquet(path: str | Path) -> bool:
     return path.suffix.lower() == ".parquet"
 
 
-def read_parquet(path: str | Path, columns: tuple[str, ...],
-                 name_key: Callable[[str], object] = str) -> tuple[pd.DataFrame, Callable[[int], str]]:
+def read_parquet(
+    path: str | Path, columns: tuple[str, ...], name_key: Callable[[str], object] = str
+) -> tuple[pd.DataFrame, Callable[[int], str]]:
     """The recordings columns of a Parquet file or folder, and a function naming row r (0-based, of all
     files in order) as ``"part-3.parquet, row 12"``. DataFormatError names the file when it cannot be
     read or lacks a column."""
@@ -104,8 +111,10 @@ def read_parquet(path: str | Path, columns: tuple[str, ...],
         names = pf.schema_arrow.names
         missing = [c for c in columns if c not in names]
         if missing:
-            raise DataFormatError(f"{f}: required column '{missing[0]}' missing (found: {', '.join(names)}; "
-                                  f"expected: {', '.join(columns)})")
+            raise DataFormatError(
+                f"{f}: required column '{missing[0]}' missing (found: {', '.join(names)}; "
+                f"expected: {', '.join(columns)})"
+            )
         handles.append(pf)
         sizes.append(pf.metadata.num_rows)
     offsets = np.cumsum([0, *sizes]).tolist()

@@ -33,6 +33,7 @@ marked ``invalid`` in :attr:`Recordings.trials` with the reason, and the rest is
 (sampling rate, trials at another rate, jitter and dropped frames, resampled onto a uniform grid) are
 checked by :mod:`skilllib.recordings`.
 """
+
 from __future__ import annotations
 
 import io
@@ -45,15 +46,16 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from . import _checks as checks, _timing as timing
-from ._parquet import is_parquet, read_parquet, release_arrow_memory
+from . import _checks as checks
+from . import _timing as timing
 from ._checks import (
     _check_rates,
     _check_units,
 )
-from ._runs import Runs
 from ._csv import read_plain, read_table
 from ._errors import DataFormatError, quote
+from ._parquet import is_parquet, read_parquet, release_arrow_memory
+from ._runs import Runs
 
 COLUMNS = ("participant", "trial", "t", "x", "y", "z", "contact")
 ID_COLUMNS = ("participant", "trial")
@@ -121,8 +123,11 @@ class Recordings:
         (R, 3) m, ``contact`` (R,) bool. Trial rows as :meth:`runs` gives them (resampled trials excepted)."""
         if "arrays" not in self._cache:
             f = self.frame
-            self._cache["arrays"] = (f["t"].to_numpy(dtype=float), f[list(POSITION_COLUMNS)].to_numpy(dtype=float),
-                                     f["contact"].to_numpy() == 1)
+            self._cache["arrays"] = (
+                f["t"].to_numpy(dtype=float),
+                f[list(POSITION_COLUMNS)].to_numpy(dtype=float),
+                f["contact"].to_numpy() == 1,
+            )
         return self._cache["arrays"]
 
     def runs(self) -> Runs:
@@ -160,7 +165,7 @@ def sort_ids(labels: Iterable[Any]) -> list:
 
 
 def _where(source: str, place: str, column: str) -> str:
-    """"file, line 12, column 'x'" (``place`` from the caller's ``loc``)."""
+    """ "file, line 12, column 'x'" (``place`` from the caller's ``loc``)."""
     return f"{source}, {place}, column '{column}'"
 
 
@@ -176,8 +181,10 @@ def _check_columns(df: pd.DataFrame, source: str) -> pd.DataFrame:
             hint = "; column names are lower case"
         else:
             hint = "; other names can be mapped with --columns old=new,... (skilllib.recordings.map_frame)"
-        raise DataFormatError(f"{source}: required column '{missing[0]}' missing (found: {quote(found)[1:-1]}; "
-                              f"expected: {', '.join(COLUMNS)}){hint}")
+        raise DataFormatError(
+            f"{source}: required column '{missing[0]}' missing (found: {quote(found)[1:-1]}; "
+            f"expected: {', '.join(COLUMNS)}){hint}"
+        )
     return df
 
 
@@ -243,9 +250,15 @@ def _ids(df: pd.DataFrame, source: str, loc: Callable[[int], str]) -> list[tuple
     return out
 
 
-def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, lines: np.ndarray | range | None = None,
-                          places: np.ndarray | None = None, place: Callable[[int], str] | None = None,
-                          rate: tuple[float, float] | None = None) -> Recordings:
+def recordings_from_frame(
+    df: pd.DataFrame,
+    source: str = "<DataFrame>",
+    *,
+    lines: np.ndarray | range | None = None,
+    places: np.ndarray | None = None,
+    place: Callable[[int], str] | None = None,
+    rate: tuple[float, float] | None = None,
+) -> Recordings:
     """Validate a long table into :class:`Recordings`; see :func:`read_recordings`. ``lines``: the
     physical file line of each row (as :func:`read_table` gives); ``places``: a text per row naming where
     it came from (``"P01/3.c3d, frame 12"``, for tables read from several files); ``place``: the same as a
@@ -288,8 +301,14 @@ def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, line
         i = int(np.flatnonzero(bad)[0])
         raise DataFormatError(f"{_where(source, loc(i), 'contact')}: contact must be 0 or 1, got {c[i]:g}")
     del df
-    frame = pd.DataFrame({"participant": pd.Categorical.from_codes(p_codes, categories=p_names),
-                          "trial": pd.Categorical.from_codes(t_codes, categories=t_names), **cols}, copy=False)
+    frame = pd.DataFrame(
+        {
+            "participant": pd.Categorical.from_codes(p_codes, categories=p_names),
+            "trial": pd.Categorical.from_codes(t_codes, categories=t_names),
+            **cols,
+        },
+        copy=False,
+    )
     trial_of_row, keys = _trial_numbers(p_codes, t_codes, p_names, t_names)
     del p_codes, t_codes
     counts = np.bincount(trial_of_row, minlength=len(keys))
@@ -317,24 +336,41 @@ def recordings_from_frame(df: pd.DataFrame, source: str = "<DataFrame>", *, line
             r, key = rows[i], keys[i]
             irr = timing.irregularity(t_all[r], dt)
             if irr.gap:
-                reasons[i] = (f"gap in the time stamps: {irr.max_interval:.4f} s before {loc(r[irr.at])}, "
-                              f"{irr.max_interval / dt:.1f} sampling intervals (the file samples every {dt:.4f} s; "
-                              f"at most {timing.MAX_GAP_INTERVALS:g} are bridged by resampling)")
+                reasons[i] = (
+                    f"gap in the time stamps: {irr.max_interval:.4f} s before {loc(r[irr.at])}, "
+                    f"{irr.max_interval / dt:.1f} sampling intervals (the file samples every {dt:.4f} s; "
+                    f"at most {timing.MAX_GAP_INTERVALS:g} are bridged by resampling)"
+                )
             elif not irr.regular:
                 t_u, pos_u, con_u = timing.resample_uniform(t_all[r], pos_all[r], c_all[r] == 1, dt)
                 resampled[key] = Trial(key[0], key[1], t_u, pos_u, con_u)
                 timings[i] = f"resampled: {irr.describe()}"
         fs = 1.0 / dt
-    trials = pd.DataFrame({
-        "participant": [k[0] for k in keys], "trial": [k[1] for k in keys],
-        "n_samples": counts, "first_line": [line(r[0]) for r in rows],
-        "status": ["invalid" if r else "ok" for r in reasons], "reason": reasons, "timing": timings})
-    return Recordings(frame=frame, trials=trials, fs=fs, source=source, _rows=dict(zip(keys, rows)),
-                      _resampled=resampled, _cache=cache)
+    trials = pd.DataFrame(
+        {
+            "participant": [k[0] for k in keys],
+            "trial": [k[1] for k in keys],
+            "n_samples": counts,
+            "first_line": [line(r[0]) for r in rows],
+            "status": ["invalid" if r else "ok" for r in reasons],
+            "reason": reasons,
+            "timing": timings,
+        }
+    )
+    return Recordings(
+        frame=frame,
+        trials=trials,
+        fs=fs,
+        source=source,
+        _rows=dict(zip(keys, rows)),
+        _resampled=resampled,
+        _cache=cache,
+    )
 
 
-def _trial_numbers(p_codes: np.ndarray, t_codes: np.ndarray, p_names: np.ndarray,
-                   t_names: np.ndarray) -> tuple[np.ndarray, list[tuple[str, str]]]:
+def _trial_numbers(
+    p_codes: np.ndarray, t_codes: np.ndarray, p_names: np.ndarray, t_names: np.ndarray
+) -> tuple[np.ndarray, list[tuple[str, str]]]:
     """The trial number of each row (0, 1, ... in order of first appearance of its (participant, trial))
     and the trials' ids; computed over the runs of equal consecutive ids, not the rows."""
     change = np.flatnonzero((p_codes[1:] != p_codes[:-1]) | (t_codes[1:] != t_codes[:-1])) + 1
@@ -351,9 +387,14 @@ def _positions(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
     base = x
     while isinstance(base.base, np.ndarray):
         base = base.base
-    if base.shape == (len(x), 3) and base.dtype == float and all(
+    if (
+        base.shape == (len(x), 3)
+        and base.dtype == float
+        and all(
             np.shares_memory(v, base) and v.ctypes.data == base[:, j].ctypes.data and v.strides == base[:, j].strides
-            for j, v in enumerate((x, y, z))):
+            for j, v in enumerate((x, y, z))
+        )
+    ):
         return base
     return np.column_stack([x, y, z])
 
@@ -402,13 +443,15 @@ def format_recordings(data: pd.DataFrame | Recordings) -> str:
     missing = [c for c in COLUMNS if c not in df.columns]
     if missing:
         raise ValueError(f"cannot write recordings: column(s) {missing} missing")
-    out = pd.DataFrame({
-        "participant": [_id(v) for v in df["participant"]],
-        "trial": [_id(v) for v in df["trial"]],
-        "t": _fmt(df["t"], T_DECIMALS),
-        **{c: _fmt(df[c], POS_DECIMALS) for c in POSITION_COLUMNS},
-        "contact": [f"{c:.0f}" if np.isfinite(c) else "" for c in df["contact"].to_numpy(dtype=float)],
-    })
+    out = pd.DataFrame(
+        {
+            "participant": [_id(v) for v in df["participant"]],
+            "trial": [_id(v) for v in df["trial"]],
+            "t": _fmt(df["t"], T_DECIMALS),
+            **{c: _fmt(df[c], POS_DECIMALS) for c in POSITION_COLUMNS},
+            "contact": [f"{c:.0f}" if np.isfinite(c) else "" for c in df["contact"].to_numpy(dtype=float)],
+        }
+    )
     buf = io.StringIO()
     out.to_csv(buf, index=False, lineterminator="\n")
     return buf.getvalue()

@@ -12,6 +12,7 @@ convolution), so the block path gives the *same bits* as the per-trial functions
 and :mod:`skilllib.features`, which stay the reference (tests compare the two). A sum over the flat array
 with ``np.add.reduceat`` would add in another order and differ in the last bits.
 """
+
 from __future__ import annotations
 
 from collections.abc import Iterator
@@ -45,8 +46,9 @@ class Runs:
         end = np.concatenate([edges, [codes.size]]).astype(np.int64)
         return cls(start, end - start)
 
-    def blocks(self, which: np.ndarray | None = None, length: np.ndarray | None = None,
-               offset: np.ndarray | None = None) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+    def blocks(
+        self, which: np.ndarray | None = None, length: np.ndarray | None = None, offset: np.ndarray | None = None
+    ) -> Iterator[tuple[np.ndarray, np.ndarray]]:
         """For each distinct length n: ``(trials, rows)``, the trial numbers (ascending) and the (K, n)
         row indices of their rows. ``which``: the trials to include (bool mask or indices; default all);
         ``length``: use these lengths instead of the runs' (e.g. the samples before contact);

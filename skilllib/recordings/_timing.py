@@ -25,6 +25,7 @@ at, and
   taken. A longer gap (more than two frames missing in a row) cannot be bridged honestly and makes the
   trial ``invalid`` with the reason.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -59,12 +60,15 @@ def regular_mean_interval(t: np.ndarray) -> float:
 def time_unit_advice(step: float) -> str:
     """What a median time step too long for seconds (``step`` in the file's unit) says about the unit:
     the unit (milliseconds or microseconds) whose rate is plausible, and the division that fixes it."""
-    head = (f"median time step {step:g} between samples: {1 / step:.3g} Hz if t were in seconds, below "
-            f"{MIN_RATE_HZ:g} Hz")
+    head = (
+        f"median time step {step:g} between samples: {1 / step:.3g} Hz if t were in seconds, below {MIN_RATE_HZ:g} Hz"
+    )
     for unit, factor in (("milliseconds", 1e3), ("microseconds", 1e6)):
         if MIN_RATE_HZ <= factor / step <= MAX_RATE_HZ:
-            return (f"time stamps look like {unit} ({head}; {factor / step:.4g} Hz in {unit}); t must be in "
-                    f"seconds: divide t by {factor:.0f}")
+            return (
+                f"time stamps look like {unit} ({head}; {factor / step:.4g} Hz in {unit}); t must be in "
+                f"seconds: divide t by {factor:.0f}"
+            )
     return f"time stamps are not in seconds ({head}); t must be in seconds"
 
 
@@ -113,8 +117,9 @@ def irregularity(t: np.ndarray, dt: float) -> Irregularity:
     return Irregularity(float(rel.max()), dropped, float(d[k]), k + 1, float(dt), frame_jitter)
 
 
-def resample_uniform(t: np.ndarray, pos: np.ndarray, contact: np.ndarray,
-                     dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def resample_uniform(
+    t: np.ndarray, pos: np.ndarray, contact: np.ndarray, dt: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Resample one trial onto the uniform grid ``t[0] + k dt`` (k = 0 .. floor((t[-1] - t[0]) / dt)).
 
     ``t`` (N,) s, increasing; ``pos`` (N, 3) m; ``contact`` (N,) bool. Positions: cubic interpolating

@@ -23,6 +23,7 @@ sample at exactly ``(0, 0, 0)`` is a gap (NaN, so :mod:`skilllib.recordings` mar
 ``contact`` is all NaN: TRC has no contact signal, the height rule gives it
 (:func:`skilllib.recordings.map_frame` with ``contact_height``).
 """
+
 from __future__ import annotations
 
 import io
@@ -83,8 +84,9 @@ def read_trc(path: str | Path, *, marker: str | None = None, units: str | None =
     except ValueError:
         raise DataFormatError(f"{path}, line 3: NumMarkers {header['NumMarkers']!r} is not a number") from None
     if len(names) != n_markers:
-        raise DataFormatError(f"{path}, line 4: {len(names)} marker names ({', '.join(names)}) but "
-                              f"NumMarkers is {n_markers}")
+        raise DataFormatError(
+            f"{path}, line 4: {len(names)} marker names ({', '.join(names)}) but NumMarkers is {n_markers}"
+        )
     listed = ", ".join(names)
     if marker is None:
         if len(names) != 1:
@@ -94,8 +96,9 @@ def read_trc(path: str | Path, *, marker: str | None = None, units: str | None =
         k = names.index(marker.strip())
     else:
         raise DataFormatError(f"{path}: no marker {marker!r} (markers: {listed})")
-    factor = unit_factor(units if units is not None else header["Units"],
-                         str(path) if units is not None else f"{path}, line 3: Units")
+    factor = unit_factor(
+        units if units is not None else header["Units"], str(path) if units is not None else f"{path}, line 3: Units"
+    )
     data_lines = [i for i in range(HEADER_LINES, len(lines)) if lines[i].strip()]  # 0-based line numbers
     if not data_lines:
         raise DataFormatError(f"{path}: no data rows after the TRC header")
@@ -104,27 +107,33 @@ def read_trc(path: str | Path, *, marker: str | None = None, units: str | None =
         table = pd.read_csv(io.StringIO(body), sep="\t", header=None, dtype=str, keep_default_na=False)
     except pd.errors.ParserError as e:  # e.g. "Expected 8 fields in line 12, saw 9" (line of the data block)
         msg = str(e).replace("Error tokenizing data. C error: ", "").strip()
-        raise DataFormatError(f"{path}: data rows are not a regular tab-separated table ({msg}; the data "
-                              f"start on line {data_lines[0] + 1})") from None
+        raise DataFormatError(
+            f"{path}: data rows are not a regular tab-separated table ({msg}; the data "
+            f"start on line {data_lines[0] + 1})"
+        ) from None
     cols = {"t": 1, "x": 2 + 3 * k, "y": 3 + 3 * k, "z": 4 + 3 * k}
     out = {}
     for name, j in cols.items():
         if j >= table.shape[1]:
-            raise DataFormatError(f"{path}, line {data_lines[0] + 1}: no column {j + 1} for {name!r} "
-                                  f"(the data rows have {table.shape[1]} columns)")
+            raise DataFormatError(
+                f"{path}, line {data_lines[0] + 1}: no column {j + 1} for {name!r} "
+                f"(the data rows have {table.shape[1]} columns)"
+            )
         text = table[j].fillna("").str.strip()
         num = pd.to_numeric(text, errors="coerce")
         bad = (num.isna() & (text != "")).to_numpy()
         if bad.any():
             i = int(np.flatnonzero(bad)[0])
-            raise DataFormatError(f"{path}, line {data_lines[i] + 1}, column {j + 1} ({name}): "
-                                  f"{quote(text.iloc[i])} is not a number")
+            raise DataFormatError(
+                f"{path}, line {data_lines[i] + 1}, column {j + 1} ({name}): {quote(text.iloc[i])} is not a number"
+            )
         out[name] = num.to_numpy(dtype=float, na_value=np.nan)
     xyz = np.column_stack([out["x"], out["y"], out["z"]])
     xyz[np.all(xyz == 0, axis=1)] = np.nan
     xyz *= factor
-    return pd.DataFrame({"t": out["t"], "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2],
-                         "contact": np.full(len(xyz), np.nan)})
+    return pd.DataFrame(
+        {"t": out["t"], "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2], "contact": np.full(len(xyz), np.nan)}
+    )
 
 
 def write_trc(path: str | Path, markers: dict[str, np.ndarray], t: np.ndarray, *, units: str = "mm") -> Path:
@@ -139,11 +148,14 @@ def write_trc(path: str | Path, markers: dict[str, np.ndarray], t: np.ndarray, *
     n = len(t)
     rate = (n - 1) / (t[-1] - t[0]) if n > 1 else 0.0
     names = list(markers)
-    head = [f"PathFileType\t4\t(X/Y/Z)\t{path.name}",
-            "DataRate\tCameraRate\tNumFrames\tNumMarkers\tUnits\tOrigDataRate\tOrigDataStartFrame\tOrigNumFrames",
-            f"{rate:g}\t{rate:g}\t{n}\t{len(names)}\t{units}\t{rate:g}\t1\t{n}",
-            "Frame#\tTime\t" + "\t".join(f"{m}\t\t" for m in names),
-            "\t\t" + "\t".join(f"X{i}\tY{i}\tZ{i}" for i in range(1, len(names) + 1)), ""]
+    head = [
+        f"PathFileType\t4\t(X/Y/Z)\t{path.name}",
+        "DataRate\tCameraRate\tNumFrames\tNumMarkers\tUnits\tOrigDataRate\tOrigDataStartFrame\tOrigNumFrames",
+        f"{rate:g}\t{rate:g}\t{n}\t{len(names)}\t{units}\t{rate:g}\t1\t{n}",
+        "Frame#\tTime\t" + "\t".join(f"{m}\t\t" for m in names),
+        "\t\t" + "\t".join(f"X{i}\tY{i}\tZ{i}" for i in range(1, len(names) + 1)),
+        "",
+    ]
     cols = [np.asarray(markers[m], dtype=float) / factor for m in names]
     rows = []
     for i in range(n):

@@ -53,6 +53,7 @@ Joint acceleration limits (rad/s^2) and joint torque limits (N m), :func:`dynami
   accelerations (15, 7.5, 10, 12.5, 15, 20, 20) rad/s^2 and torques (87, 87, 87, 87, 12, 12, 12) N m;
   roboticstoolbox's DH model carries masses, centres of mass and inertias of every link.
 """
+
 from __future__ import annotations
 
 from typing import TYPE_CHECKING, NamedTuple
@@ -191,18 +192,25 @@ def has_dynamics(robot: rtb.Robot) -> bool:
 def dynamic_limits(name: str) -> DynamicLimits:
     """The book's acceleration and torque limits of an arm by name (as :func:`get_robot`)."""
     key = str(name).strip().lower()
-    table = {"simple6": (GENERIC_QDD_LIMIT, None), "ur5": (GENERIC_QDD_LIMIT, UR5_TAU_LIMITS),
-             "puma560": (None, PUMA560_TAU_LIMITS), "panda": (PANDA_QDD_LIMITS, PANDA_TAU_LIMITS)}
+    table = {
+        "simple6": (GENERIC_QDD_LIMIT, None),
+        "ur5": (GENERIC_QDD_LIMIT, UR5_TAU_LIMITS),
+        "puma560": (None, PUMA560_TAU_LIMITS),
+        "panda": (PANDA_QDD_LIMITS, PANDA_TAU_LIMITS),
+    }
     if key not in table:
         raise ValueError(f"unknown robot {name!r}; valid names: {', '.join(ROBOT_NAMES)}")
     n = 7 if key == "panda" else 6
     qdd, tau = table[key]
-    return DynamicLimits(None if qdd is None else limits_vector(qdd, n, "qdd_limits", "rad/s^2"),
-                         None if tau is None else limits_vector(tau, n, "tau_limits", "N m"))
+    return DynamicLimits(
+        None if qdd is None else limits_vector(qdd, n, "qdd_limits", "rad/s^2"),
+        None if tau is None else limits_vector(tau, n, "tau_limits", "N m"),
+    )
 
 
-def limits_vector(limits: float | np.ndarray | list[float] | tuple[float, ...], n: int, what: str,
-                  unit: str) -> np.ndarray:
+def limits_vector(
+    limits: float | np.ndarray | list[float] | tuple[float, ...], n: int, what: str, unit: str
+) -> np.ndarray:
     """Per-joint limits as an (n,) array (a scalar applies to every joint); ValueError naming ``what`` and
     ``unit`` when the length is not 1 or ``n`` or a limit is not positive and finite."""
     lim = np.asarray(limits, dtype=float)

@@ -30,6 +30,7 @@ bracketed on a grid and refined with Brent's method (``scipy.optimize.brentq``) 
 normalised torque ``max |tau_j| / tau_max_j - 1``. When gravity and friction alone exceed a limit no slowing
 helps (s = inf). The limit that sets s is the *binding* one.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -122,7 +123,9 @@ class JointDynamics:
     def ok(self) -> np.ndarray:
         """Samples with q, qd and qdd computed (N,) bool."""
         r = self.transfer
-        return np.all(np.isfinite(r.q), axis=1) & np.all(np.isfinite(r.qd), axis=1) & np.all(np.isfinite(self.qdd), axis=1)
+        return (
+            np.all(np.isfinite(r.q), axis=1) & np.all(np.isfinite(r.qd), axis=1) & np.all(np.isfinite(self.qdd), axis=1)
+        )
 
     def _peak(self, x: np.ndarray | None) -> np.ndarray | None:
         if x is None:
@@ -253,22 +256,31 @@ class JointDynamics:
         """The per-prototype entries of results.json this module adds (plain floats and lists):
         ``time_scale`` and ``feasible`` cover every limit checked (velocity, acceleration, torque);
         ``time_scales`` gives the stretch each limit asks for alone."""
+
         def plain(x: float | None) -> float | None:
             return None if x is None or not np.isfinite(x) else float(x)
 
         def vec(x: np.ndarray | None) -> list[float | None] | None:
             return None if x is None else [plain(v) for v in x]
 
-        return {"peak_abs_qdd": vec(self.peak_abs_qdd), "peak_abs_qddd": vec(self.peak_abs_qddd),
-                "peak_abs_tau": vec(self.peak_abs_tau),
-                "time_scales": {k: plain(v) for k, v in self.time_scales().items()},
-                "time_scale": plain(self.time_scale), "binding_limit": self.binding_limit,
-                "feasible": bool(self.feasible)}
+        return {
+            "peak_abs_qdd": vec(self.peak_abs_qdd),
+            "peak_abs_qddd": vec(self.peak_abs_qddd),
+            "peak_abs_tau": vec(self.peak_abs_tau),
+            "time_scales": {k: plain(v) for k, v in self.time_scales().items()},
+            "time_scale": plain(self.time_scale),
+            "binding_limit": self.binding_limit,
+            "feasible": bool(self.feasible),
+        }
 
 
-def joint_dynamics(robot: rtb.Robot, result: TransferResult, qdd_limits: float | np.ndarray | None = None,
-                   tau_limits: float | np.ndarray | None = None,
-                   rotation: np.ndarray | None = None) -> JointDynamics:
+def joint_dynamics(
+    robot: rtb.Robot,
+    result: TransferResult,
+    qdd_limits: float | np.ndarray | None = None,
+    tau_limits: float | np.ndarray | None = None,
+    rotation: np.ndarray | None = None,
+) -> JointDynamics:
     """Accelerations, jerks and (where the model allows) torques of ``result`` on ``robot``.
 
     ``qdd_limits`` rad/s^2 and ``tau_limits`` N m: scalar, per joint, or None for no such limit (torque
@@ -280,8 +292,9 @@ def joint_dynamics(robot: rtb.Robot, result: TransferResult, qdd_limits: float |
     tau_lim = None if tau_limits is None else limits_vector(tau_limits, n, "tau_limits", "N m")
     dynamic = has_dynamics(robot)
     if tau_lim is not None and not dynamic:
-        raise ValueError(f"{robot.name} has no dynamic parameters (no link masses): torque limits cannot "
-                         f"be checked on it")
+        raise ValueError(
+            f"{robot.name} has no dynamic parameters (no link masses): torque limits cannot be checked on it"
+        )
     v = _spatial_velocity(result, ets)
     a = derivative(v, result.t)
     qdd = joint_accelerations(ets, result.q, result.qd, v, a)
@@ -298,5 +311,6 @@ def _spatial_velocity(result: TransferResult, ets: rtb.ETS) -> np.ndarray:
     transfer's ``v_base``, or J(q) qd where a result does not carry it (NaN where q is NaN)."""
     if result.v_base is not None:
         return np.hstack([result.v_base, np.zeros((len(result.t), 3))])
-    return np.array([ets.jacob0(q) @ qd if np.all(np.isfinite(q)) else np.full(6, np.nan)
-                     for q, qd in zip(result.q, result.qd)])
+    return np.array(
+        [ets.jacob0(q) @ qd if np.all(np.isfinite(q)) else np.full(6, np.nan) for q, qd in zip(result.q, result.qd)]
+    )

@@ -29,6 +29,7 @@ returns the prototype's SPARC exactly, and fc / s stays below the Nyquist freque
 stays below fs / 2). Torque limits are not simulated (no forward dynamics): the acceleration limits stand
 in for the drives' capacity.
 """
+
 from __future__ import annotations
 
 from collections.abc import Mapping
@@ -38,8 +39,8 @@ import numpy as np
 import roboticstoolbox as rtb
 from scipy.interpolate import CubicHermiteSpline
 
-from ._arms import limits_vector
 from ..smoothness import SPARC_PARAMS, sparc
+from ._arms import limits_vector
 from ._velocity import TransferResult
 
 #: Controller rate, Hz (a Universal Robots e-Series controller runs at 500 Hz).
@@ -92,14 +93,27 @@ class Execution:
 
     def summary(self) -> dict[str, float]:
         """``pv`` (m/s), ``sparc``, ``max_tracking_error_m`` (m), ``saturated_fraction``, ``time_scale``."""
-        return {"pv": float(self.pv), "sparc": float(self.sparc), "max_tracking_error_m": self.max_tracking_error_m,
-                "saturated_fraction": self.saturated_fraction, "time_scale": float(self.time_scale)}
+        return {
+            "pv": float(self.pv),
+            "sparc": float(self.sparc),
+            "max_tracking_error_m": self.max_tracking_error_m,
+            "saturated_fraction": self.saturated_fraction,
+            "time_scale": float(self.time_scale),
+        }
 
 
-def execute(robot: rtb.Robot, result: TransferResult, qd_limits: float | np.ndarray | None = None,
-            qdd_limits: float | np.ndarray | None = None, *, time_scale: float = 1.0,
-            rate_hz: float = CONTROL_RATE_HZ, bandwidth_hz: float | None = ACTUATOR_BANDWIDTH_HZ,
-            sparc_params: Mapping[str, float] = SPARC_PARAMS, qdd: np.ndarray | None = None) -> Execution:
+def execute(
+    robot: rtb.Robot,
+    result: TransferResult,
+    qd_limits: float | np.ndarray | None = None,
+    qdd_limits: float | np.ndarray | None = None,
+    *,
+    time_scale: float = 1.0,
+    rate_hz: float = CONTROL_RATE_HZ,
+    bandwidth_hz: float | None = ACTUATOR_BANDWIDTH_HZ,
+    sparc_params: Mapping[str, float] = SPARC_PARAMS,
+    qdd: np.ndarray | None = None,
+) -> Execution:
     """Simulate ``robot`` following the joint velocities of ``result`` (see the module docstring).
 
     ``qd_limits`` rad/s (default the result's own) and ``qdd_limits`` rad/s^2 (None: no acceleration
@@ -154,9 +168,25 @@ def execute(robot: rtb.Robot, result: TransferResult, qd_limits: float | np.ndar
     error = np.linalg.norm(x_k - result.x_base, axis=1)
     fs = (len(t_k) - 1) / t_k[-1] if len(t_k) > 1 else float("nan")
     params = dict(SPARC_PARAMS) | dict(sparc_params)
-    value = sparc(speed_k, fs, fc=params["fc"] / s, amp_th=params["amp_th"],
-                  padlevel=params["padlevel"]) if len(t_k) > 1 else float("nan")
-    return Execution(t=t + result.t[0], q=q, qd=qd, qd_cmd=qd_cmd, x=x, v=v, saturated=saturated,
-                     t_samples=t_k + result.t[0], speed_samples=speed_k, tracking_error=error,
-                     time_scale=s, pv=float(speed_k.max()), sparc=value, rate_hz=float(rate_hz),
-                     bandwidth_hz=None if bandwidth_hz is None else float(bandwidth_hz))
+    value = (
+        sparc(speed_k, fs, fc=params["fc"] / s, amp_th=params["amp_th"], padlevel=params["padlevel"])
+        if len(t_k) > 1
+        else float("nan")
+    )
+    return Execution(
+        t=t + result.t[0],
+        q=q,
+        qd=qd,
+        qd_cmd=qd_cmd,
+        x=x,
+        v=v,
+        saturated=saturated,
+        t_samples=t_k + result.t[0],
+        speed_samples=speed_k,
+        tracking_error=error,
+        time_scale=s,
+        pv=float(speed_k.max()),
+        sparc=value,
+        rate_hz=float(rate_hz),
+        bandwidth_hz=None if bandwidth_hz is None else float(bandwidth_hz),
+    )

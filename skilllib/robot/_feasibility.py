@@ -16,6 +16,7 @@ torque); the velocity limits alone, the paper's question, are ``feasible_velocit
 The limits an arm gets by default, and their sources, are those of :func:`skilllib.robot.dynamic_limits`;
 :func:`resolve_limits` applies the user's.
 """
+
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
@@ -25,10 +26,10 @@ from typing import Any
 import numpy as np
 import roboticstoolbox as rtb
 
+from ..smoothness import SPARC_PARAMS
+from ._arms import DynamicLimits, dynamic_limits, has_dynamics, limits_vector
 from ._dynamics import JointDynamics, joint_dynamics
 from ._execution import ACTUATOR_BANDWIDTH_HZ, CONTROL_RATE_HZ, Execution, execute
-from ._arms import DynamicLimits, dynamic_limits, has_dynamics, limits_vector
-from ..smoothness import SPARC_PARAMS
 from ._velocity import TransferResult, transfer_summary
 
 
@@ -67,8 +68,12 @@ def _executed(e: Execution) -> dict[str, float]:
     return {k: (float(v) if np.isfinite(v) else None) for k, v in out.items()}
 
 
-def resolve_limits(name: str, robot: rtb.Robot, qdd_max: float | Sequence[float] | None = None,
-                   tau_max: float | Sequence[float] | None = None) -> DynamicLimits:
+def resolve_limits(
+    name: str,
+    robot: rtb.Robot,
+    qdd_max: float | Sequence[float] | None = None,
+    tau_max: float | Sequence[float] | None = None,
+) -> DynamicLimits:
     """The acceleration (rad/s^2) and torque (N m) limits of the arm ``name``: the book's
     (:func:`skilllib.robot.dynamic_limits`) unless the user gives ``qdd_max`` / ``tau_max`` (one value for
     every joint or one per joint). ValueError for a bad value, or torque limits on an arm without dynamic
@@ -77,19 +82,28 @@ def resolve_limits(name: str, robot: rtb.Robot, qdd_max: float | Sequence[float]
     n = robot.n
     qdd = book.qdd_limits if qdd_max is None else limits_vector(qdd_max, n, "qdd_max", "rad/s^2")
     if tau_max is not None and not has_dynamics(robot):
-        raise ValueError(f"tau_max: {robot.name} has no dynamic parameters (a kinematic model), so no torques "
-                         f"to limit; choose an arm with dynamics (ur5, puma560, panda)")
+        raise ValueError(
+            f"tau_max: {robot.name} has no dynamic parameters (a kinematic model), so no torques "
+            f"to limit; choose an arm with dynamics (ur5, puma560, panda)"
+        )
     tau = book.tau_limits if tau_max is None else limits_vector(tau_max, n, "tau_max", "N m")
     return DynamicLimits(qdd, tau)
 
 
-def assess_one(robot: rtb.Robot, result: TransferResult, limits: DynamicLimits, *,
-               sparc_params: Mapping[str, float] = SPARC_PARAMS, rate_hz: float = CONTROL_RATE_HZ,
-               bandwidth_hz: float | None = ACTUATOR_BANDWIDTH_HZ) -> Assessment:
+def assess_one(
+    robot: rtb.Robot,
+    result: TransferResult,
+    limits: DynamicLimits,
+    *,
+    sparc_params: Mapping[str, float] = SPARC_PARAMS,
+    rate_hz: float = CONTROL_RATE_HZ,
+    bandwidth_hz: float | None = ACTUATOR_BANDWIDTH_HZ,
+) -> Assessment:
     """The :class:`Assessment` of one transfer result under ``limits``."""
     dyn = joint_dynamics(robot, result, limits.qdd_limits, limits.tau_limits)
-    kw = dict(qdd_limits=limits.qdd_limits, rate_hz=rate_hz, bandwidth_hz=bandwidth_hz,
-              sparc_params=sparc_params, qdd=dyn.qdd)
+    kw = dict(
+        qdd_limits=limits.qdd_limits, rate_hz=rate_hz, bandwidth_hz=bandwidth_hz, sparc_params=sparc_params, qdd=dyn.qdd
+    )
     if not dyn.ok.all():
         return Assessment(dyn, None, None, "not executed: the transfer left samples without joint angles")
     executed = execute(robot, result, **kw)
@@ -99,12 +113,20 @@ def assess_one(robot: rtb.Robot, result: TransferResult, limits: DynamicLimits, 
     return Assessment(dyn, executed, executed if s == 1.0 else execute(robot, result, time_scale=s, **kw))
 
 
-def assess(robot: rtb.Robot, results: Sequence[TransferResult], limits: DynamicLimits, *,
-           sparc_params: Mapping[str, float] = SPARC_PARAMS, rate_hz: float = CONTROL_RATE_HZ,
-           bandwidth_hz: float | None = ACTUATOR_BANDWIDTH_HZ) -> list[Assessment]:
+def assess(
+    robot: rtb.Robot,
+    results: Sequence[TransferResult],
+    limits: DynamicLimits,
+    *,
+    sparc_params: Mapping[str, float] = SPARC_PARAMS,
+    rate_hz: float = CONTROL_RATE_HZ,
+    bandwidth_hz: float | None = ACTUATOR_BANDWIDTH_HZ,
+) -> list[Assessment]:
     """:func:`assess_one` for each result (same arm, same limits)."""
-    return [assess_one(robot, r, limits, sparc_params=sparc_params, rate_hz=rate_hz, bandwidth_hz=bandwidth_hz)
-            for r in results]
+    return [
+        assess_one(robot, r, limits, sparc_params=sparc_params, rate_hz=rate_hz, bandwidth_hz=bandwidth_hz)
+        for r in results
+    ]
 
 
 def transfer_block(assessments: Sequence[Assessment]) -> dict[str, Any]:
@@ -118,8 +140,10 @@ def transfer_block(assessments: Sequence[Assessment]) -> dict[str, Any]:
     block["qdd_limits"] = _list(first.dynamics.qdd_limits)
     block["tau_limits"] = _list(first.dynamics.tau_limits)
     e = next((a.executed for a in assessments if a.executed is not None), None)
-    block["execution"] = {"control_rate_hz": CONTROL_RATE_HZ if e is None else e.rate_hz,
-                          "actuator_bandwidth_hz": ACTUATOR_BANDWIDTH_HZ if e is None else e.bandwidth_hz}
+    block["execution"] = {
+        "control_rate_hz": CONTROL_RATE_HZ if e is None else e.rate_hz,
+        "actuator_bandwidth_hz": ACTUATOR_BANDWIDTH_HZ if e is None else e.bandwidth_hz,
+    }
     block["prototypes"] = [a.summary() for a in assessments]
     return block
 
@@ -127,14 +151,18 @@ def transfer_block(assessments: Sequence[Assessment]) -> dict[str, Any]:
 def limits_text(dyn: JointDynamics) -> str:
     """The limits of an assessment for a summary line: 'joint velocity limits 3.14 rad/s; acceleration
     5 rad/s^2' (one value when every joint has the same, else one per joint; absent limits left out)."""
+
     def one(what: str, lim: np.ndarray | None, unit: str) -> str:
         if lim is None:
             return ""
         values = f"{lim[0]:.3g}" if np.all(lim == lim[0]) else ", ".join(f"{v:.3g}" for v in lim)
         return f"{what} {values} {unit}"
 
-    parts = [one("joint velocity limits", dyn.transfer.qd_limits, "rad/s"), one("acceleration", dyn.qdd_limits, "rad/s^2"),
-             one("torque", dyn.tau_limits, "N m")]
+    parts = [
+        one("joint velocity limits", dyn.transfer.qd_limits, "rad/s"),
+        one("acceleration", dyn.qdd_limits, "rad/s^2"),
+        one("torque", dyn.tau_limits, "N m"),
+    ]
     return "; ".join(p for p in parts if p)
 
 

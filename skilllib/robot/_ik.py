@@ -22,6 +22,7 @@ within ``qlim`` (``ikine_*`` tolerances bound E = 0.5 e'e, not the distance, so 
 1e-14 and the residual is checked here). Whether a target is reachable at all is not decided here but
 geometrically (:mod:`skilllib.robot`).
 """
+
 from __future__ import annotations
 
 from typing import NamedTuple
@@ -71,8 +72,16 @@ def pose_residual(ets: rtb.ETS, q: np.ndarray, target: np.ndarray) -> tuple[floa
     return dp, float(np.arccos(np.clip(c, -1.0, 1.0)))
 
 
-def solve_ik(ets: rtb.ETS, target: np.ndarray, seed_q: np.ndarray, k: int, *, tol: float,
-             joint_tol: float, restarts: int = IK_RESTARTS) -> IKAnswer:
+def solve_ik(
+    ets: rtb.ETS,
+    target: np.ndarray,
+    seed_q: np.ndarray,
+    k: int,
+    *,
+    tol: float,
+    joint_tol: float,
+    restarts: int = IK_RESTARTS,
+) -> IKAnswer:
     """IK for one sample: the searches of :data:`IK_CHAIN` from ``seed_q`` (rad) until one gives a pose
     within ``tol`` (m and rad) of the 4x4 ``target`` and inside the joint limits (``joint_tol`` rad).
 
@@ -85,8 +94,9 @@ def solve_ik(ets: rtb.ETS, target: np.ndarray, seed_q: np.ndarray, k: int, *, to
         if restarting and restarts <= 0:
             continue
         slimit, seed = (restarts + 1, k) if restarting else (1, None)
-        sol = getattr(ets, method)(target, q0=seed_q, tol=1e-14, ilimit=50, slimit=slimit,
-                                   joint_limits=True, seed=seed, **kwargs)
+        sol = getattr(ets, method)(
+            target, q0=seed_q, tol=1e-14, ilimit=50, slimit=slimit, joint_limits=True, seed=seed, **kwargs
+        )
         q = np.asarray(sol.q, dtype=float)
         if not np.all(np.isfinite(q)):
             continue

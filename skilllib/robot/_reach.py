@@ -22,6 +22,7 @@ shell is exact: 0 to 2 m from the shoulder (Corke 2017, sec. 7.1; the paper's ar
 largest distance has a closed form, sqrt(d3^2 + (a2 + sqrt(a3^2 + d4^2))^2) = 0.877 m (its wrist centre
 is the tool point; the tests compare).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -61,8 +62,10 @@ class ReachShell:
 
     def describe(self, point: np.ndarray) -> str:
         """'r m from the shoulder, reach r_min to r_max m' for one base-frame point."""
-        return (f"{float(self.distance(point)):.4g} m from the shoulder; the arm reaches "
-                f"{self.r_min:.4g} to {self.r_max:.4g} m")
+        return (
+            f"{float(self.distance(point)):.4g} m from the shoulder; the arm reaches "
+            f"{self.r_min:.4g} to {self.r_max:.4g} m"
+        )
 
 
 def joint_axes(ets: rtb.ETS, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -118,8 +121,12 @@ def _reach_shell(name: str, ets: rtb.ETS, robot: rtb.Robot) -> ReachShell:
     try:
         S = shoulder_point(ets, q_mid)
     except ValueError:
-        return ReachShell(robot=name, shoulder=np.asarray(robot.base.t, dtype=float), r_min=0.0,
-                          r_max=float(robot.reach) + float(np.linalg.norm(robot.tool.t)))
+        return ReachShell(
+            robot=name,
+            shoulder=np.asarray(robot.base.t, dtype=float),
+            r_min=0.0,
+            r_max=float(robot.reach) + float(np.linalg.norm(robot.tool.t)),
+        )
 
     free = qlim[:, 2:]  # r does not depend on q1 and q2 (their axes pass through S)
 
@@ -135,8 +142,13 @@ def _reach_shell(name: str, ets: rtb.ETS, robot: rtb.Robot) -> ReachShell:
     for sign in (-1.0, 1.0):  # -1: largest distance, +1: smallest
         best = float(np.min(sign * dist))
         for x in samples[np.argsort(sign * dist)[:REACH_REFINE]]:
-            res = minimize(lambda y: sign * r(y), x, method="L-BFGS-B", bounds=bounds,
-                           options={"ftol": 1e-15, "gtol": 1e-12, "maxiter": 500})
+            res = minimize(
+                lambda y: sign * r(y),  # noqa: B023  (used at once, inside the loop)
+                x,
+                method="L-BFGS-B",
+                bounds=bounds,
+                options={"ftol": 1e-15, "gtol": 1e-12, "maxiter": 500},
+            )
             best = min(best, float(res.fun))
         extremes.append(sign * best)
     r_max, r_min = extremes

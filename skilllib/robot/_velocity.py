@@ -26,7 +26,8 @@ roboticstoolbox arm:
   minimum-norm solution J^+ v (pseudo-inverse; Corke 2017, sec. 8.4.2).
 
 Problems are flagged per sample ({sample, reason}) and never hidden: an unreachable target or an
-IK failure leaves NaN in q, qd, det_j and cond_j of that sample, with a flag; a solution on another IK branch, a Jacobian with ``cond_j`` above
+IK failure leaves NaN in q, qd, det_j and cond_j of that sample, with a flag; a solution on another IK
+branch, a Jacobian with ``cond_j`` above
 :data:`COND_THRESHOLD` or a numerically singular one are flagged and still computed. The other
 samples are computed as usual.
 
@@ -34,6 +35,7 @@ Feasibility and time scaling: a uniform time stretch t -> s t keeps the path and
 velocity by s, so the smallest stretch that brings every joint within its limit is
 s = max(1, max_j peak|qd_j| / limit_j) (:func:`time_scale_factor`, :func:`apply_time_scale`).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -42,9 +44,9 @@ from typing import Any
 import numpy as np
 import roboticstoolbox as rtb
 
-from ._ik import IK_RESTARTS, solve_ik
-from ._arms import get_robot, qd_limits_vector
 from ..smoothness import DEFAULT_FC, sparc
+from ._arms import get_robot, qd_limits_vector
+from ._ik import IK_RESTARTS, solve_ik
 from ._reach import reach_shell
 
 #: Experiment -> robot base rotation, ``p_base = EXP_TO_BASE @ p_exp`` (det +1):
@@ -214,13 +216,19 @@ def time_scaled_features(speed: np.ndarray, fs: float, s: float, fc: float = DEF
     t_s, v_s = apply_time_scale(np.arange(v.size) / fs, v, s)  # the stretched samples, s / fs apart
     t_r = np.arange(t_s[0], t_s[-1] + 1e-9, 1 / fs)
     v_r = np.interp(t_r, t_s, v_s)
-    return {"pv": float(v_s.max()), "sparc_fc_scaled": sparc(v_s, fs / s, fc=fc / s),
-            "n_resampled": int(v_r.size), "pv_resampled": float(v_r.max()),
-            "sparc_resampled_fc_scaled": sparc(v_r, fs, fc=fc / s), "sparc_resampled_fixed_fc": sparc(v_r, fs, fc=fc)}
+    return {
+        "pv": float(v_s.max()),
+        "sparc_fc_scaled": sparc(v_s, fs / s, fc=fc / s),
+        "n_resampled": int(v_r.size),
+        "pv_resampled": float(v_r.max()),
+        "sparc_resampled_fc_scaled": sparc(v_r, fs, fc=fc / s),
+        "sparc_resampled_fixed_fc": sparc(v_r, fs, fc=fc),
+    }
 
 
-def minimum_jerk_descent(amplitude: float = 0.2, peak_speed: float = 1.0, fs: float = 60.0,
-                         fraction: float = 0.7) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def minimum_jerk_descent(
+    amplitude: float = 0.2, peak_speed: float = 1.0, fs: float = 60.0, fraction: float = 0.7
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """A synthetic prototype: a vertical downward minimum-jerk movement cut at contact.
 
     Minimum-jerk position s(tau) = A (10 tau^3 - 15 tau^4 + 6 tau^5), speed peak 1.875 A / T
@@ -243,8 +251,9 @@ def minimum_jerk_descent(amplitude: float = 0.2, peak_speed: float = 1.0, fs: fl
     return t[keep], pos[keep], vel[keep]
 
 
-def to_base_frame(positions: np.ndarray, velocities: np.ndarray, start: np.ndarray,
-                  rotation: np.ndarray = EXP_TO_BASE) -> tuple[np.ndarray, np.ndarray]:
+def to_base_frame(
+    positions: np.ndarray, velocities: np.ndarray, start: np.ndarray, rotation: np.ndarray = EXP_TO_BASE
+) -> tuple[np.ndarray, np.ndarray]:
     """Experiment-frame positions (N, 3) m and velocities (N, 3) m/s in the robot base frame.
 
     ``p_base = start + R (p - p[0])`` puts the movement's start at ``start`` (m, base frame);
@@ -262,25 +271,32 @@ def _check_inputs(t: np.ndarray, pos: np.ndarray, vel: np.ndarray) -> None:
     if t.ndim != 1 or t.size < 1:
         raise ValueError(f"t must be a non-empty 1-D array of times (s), got shape {t.shape}")
     if pos.shape != (t.size, 3) or vel.shape != (t.size, 3):
-        raise ValueError(f"positions and velocities must have shape ({t.size}, 3), "
-                         f"got {pos.shape} and {vel.shape}")
+        raise ValueError(f"positions and velocities must have shape ({t.size}, 3), got {pos.shape} and {vel.shape}")
     if not (np.all(np.isfinite(t)) and np.all(np.isfinite(pos)) and np.all(np.isfinite(vel))):
         raise ValueError("t, positions and velocities must be finite (no NaN or inf)")
     if t.size > 1 and np.any(np.diff(t) <= 0):
         raise ValueError("t must be strictly increasing")
 
 
-def transfer(robot: rtb.Robot | str, t: np.ndarray, positions: np.ndarray, velocities: np.ndarray,
-             q0: np.ndarray | None = None, qd_limits: float | np.ndarray | None = None,
-             rotation: np.ndarray = EXP_TO_BASE, cond_threshold: float = COND_THRESHOLD,
-             cluster: int | None = None) -> TransferResult:
+def transfer(
+    robot: rtb.Robot | str,
+    t: np.ndarray,
+    positions: np.ndarray,
+    velocities: np.ndarray,
+    q0: np.ndarray | None = None,
+    qd_limits: float | np.ndarray | None = None,
+    rotation: np.ndarray = EXP_TO_BASE,
+    cond_threshold: float = COND_THRESHOLD,
+    cluster: int | None = None,
+) -> TransferResult:
     """Joint angles and velocities that make ``robot`` execute a hand trajectory (paper Sec. 4).
 
     ``robot`` is a roboticstoolbox arm or a name for :func:`skilllib.robot.get_robot` (which then
     also supplies ``q0`` and ``qd_limits`` unless given). ``t`` (N,) s; ``positions`` (N, 3) m and
     ``velocities`` (N, 3) m/s in the experiment frame (x mediolateral, y up, z anteroposterior).
     ``q0`` (n,) rad: the start pose, whose tool point receives the movement's start and whose
-    tool orientation is kept; it must lie within the joint limits ``qlim``. ``qd_limits`` rad/s, scalar or (n,); required for an arm given as
+    tool orientation is kept; it must lie within the joint limits ``qlim``. ``qd_limits`` rad/s, scalar or
+    (n,); required for an arm given as
     an object. Per sample: IK seeded with the previous solution (position residual <= 1e-6 m,
     checked), J = jacob0(q), det J / cond J, qd = J^-1 v with v = (R v_exp, 0, 0, 0)
     (``np.linalg.solve``; least-squares minimum-norm solution J^+ v when n != 6). Corke 2017,
@@ -303,8 +319,9 @@ def transfer(robot: rtb.Robot | str, t: np.ndarray, positions: np.ndarray, veloc
     qlim = np.asarray(ets.qlim, dtype=float)
     outside = np.nonzero((q0 < qlim[0] - JOINT_LIMIT_TOL_RAD) | (q0 > qlim[1] + JOINT_LIMIT_TOL_RAD))[0]
     if outside.size:
-        raise ValueError(f"q0 is outside the joint limits of {robot.name} at joint(s) "
-                         f"{', '.join(f'q{j + 1}' for j in outside)}")
+        raise ValueError(
+            f"q0 is outside the joint limits of {robot.name} at joint(s) {', '.join(f'q{j + 1}' for j in outside)}"
+        )
     lim = qd_limits_vector(qd_limits, n)
     t = np.asarray(t, dtype=float)
     pos = np.asarray(positions, dtype=float)
@@ -329,15 +346,24 @@ def transfer(robot: rtb.Robot | str, t: np.ndarray, positions: np.ndarray, veloc
             continue
         target = T0.copy()
         target[:3, 3] = x_base[k]
-        ans = solve_ik(ets, target, q_prev, k, tol=IK_RESIDUAL_TOL_M, joint_tol=JOINT_LIMIT_TOL_RAD,
-                       restarts=IK_RESTARTS)
+        ans = solve_ik(
+            ets, target, q_prev, k, tol=IK_RESIDUAL_TOL_M, joint_tol=JOINT_LIMIT_TOL_RAD, restarts=IK_RESTARTS
+        )
         qk, residual[k] = ans.q, ans.residual_m
         if not ans.ok:
-            last = (f"cond J = {cond_j[k_prev]:.3g} at the last solved sample {k_prev}" if k_prev >= 0
-                    else "no sample solved before")
-            flags.append({"sample": k, "reason": f"ik_failed: no solver found a pose within the joint limits "
-                                                 f"({ans.why()}) although the target lies "
-                                                 f"{shell.describe(x_base[k])}; {last}"})
+            last = (
+                f"cond J = {cond_j[k_prev]:.3g} at the last solved sample {k_prev}"
+                if k_prev >= 0
+                else "no sample solved before"
+            )
+            flags.append(
+                {
+                    "sample": k,
+                    "reason": f"ik_failed: no solver found a pose within the joint limits "
+                    f"({ans.why()}) although the target lies "
+                    f"{shell.describe(x_base[k])}; {last}",
+                }
+            )
             continue
         step = float(np.max(np.abs(qk - q_prev)))
         if step > BRANCH_JUMP_RAD:
@@ -356,9 +382,21 @@ def transfer(robot: rtb.Robot | str, t: np.ndarray, positions: np.ndarray, veloc
         if cond_j[k] > cond_threshold:
             flags.append({"sample": k, "reason": f"ill_conditioned: cond J = {cond_j[k]:.3g} > {cond_threshold:g}"})
         qd[k] = np.linalg.solve(J, v) if J.shape[0] == J.shape[1] else np.linalg.lstsq(J, v, rcond=None)[0]
-    return TransferResult(robot=robot.name, q0=q0, qd_limits=lim, t=t, x_base=x_base, q=q, qd=qd,
-                          det_j=det_j, cond_j=cond_j, ik_residual_m=residual, flags=flags, cluster=cluster,
-                          v_base=v_base)
+    return TransferResult(
+        robot=robot.name,
+        q0=q0,
+        qd_limits=lim,
+        t=t,
+        x_base=x_base,
+        q=q,
+        qd=qd,
+        det_j=det_j,
+        cond_j=cond_j,
+        ik_residual_m=residual,
+        flags=flags,
+        cluster=cluster,
+        v_base=v_base,
+    )
 
 
 def transfer_summary(results: list[TransferResult]) -> dict[str, Any]:

@@ -5,15 +5,28 @@
 minimum-jerk profile the chapters and the cohort use (:func:`minimum_jerk_speed`). The numerical core
 (zero-padded real FFT, the adaptive band, the arc length) is the private ``_spectral``.
 """
+
 import lazy_loader as _lazy
 
 __getattr__, __dir__, __all__ = _lazy.attach(
     __name__,
     submod_attrs={
         "_measures": [
-            "DEFAULT_AMP_TH", "DEFAULT_FC", "DEFAULT_PADLEVEL", "ldlj", "ldlj_many", "ldlj_rows",
-            "minimum_jerk_segment", "minimum_jerk_speed", "nfft", "sparc", "sparc_bands",
-            "sparc_many", "SPARC_PARAMS", "sparc_spectrum", "SparcSpectrum"
+            "DEFAULT_AMP_TH",
+            "DEFAULT_FC",
+            "DEFAULT_PADLEVEL",
+            "ldlj",
+            "ldlj_many",
+            "ldlj_rows",
+            "minimum_jerk_segment",
+            "minimum_jerk_speed",
+            "nfft",
+            "sparc",
+            "sparc_bands",
+            "sparc_many",
+            "SPARC_PARAMS",
+            "sparc_spectrum",
+            "SparcSpectrum",
         ],
     },
 )

@@ -21,6 +21,7 @@ authors' MATLAB code (``SpectralArcLength``, parameters [0.05, 20, 4]); their Py
 10 Hz. On the book's short segments (a few tens of samples at 60 Hz) 10 Hz caps most bands (chapter 3
 measures it), which is why the book uses 20 Hz; pass ``fc=10.0`` for the Python authors' setting.
 """
+
 from __future__ import annotations
 
 from collections.abc import Sequence
@@ -58,12 +59,14 @@ SPARC_PARAMS = MappingProxyType({"fc": DEFAULT_FC, "amp_th": DEFAULT_AMP_TH, "pa
 
 # --- the frequency grid --------------------------------------------------------------------------
 
+
 def nfft(n: int, padlevel: float = DEFAULT_PADLEVEL) -> int:
     """FFT length for ``n`` samples: ``2**(ceil(log2 n) + padlevel)``, as the authors' code."""
     return int(_nffts(np.asarray(n), padlevel))
 
 
 # --- one profile -----------------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class SparcSpectrum:
@@ -87,8 +90,13 @@ class SparcSpectrum:
     capped: bool = False
 
 
-def sparc_spectrum(speed: ArrayLike, fs: float, fc: float = DEFAULT_FC, amp_th: float = DEFAULT_AMP_TH,
-                   padlevel: float = DEFAULT_PADLEVEL) -> SparcSpectrum:
+def sparc_spectrum(
+    speed: ArrayLike,
+    fs: float,
+    fc: float = DEFAULT_FC,
+    amp_th: float = DEFAULT_AMP_TH,
+    padlevel: float = DEFAULT_PADLEVEL,
+) -> SparcSpectrum:
     """SPARC of one speed profile (m/s, sampled at ``fs`` Hz) with the spectrum it is computed from.
 
     SPARC = -int_0^{omega_c} sqrt((1/omega_c)**2 + (dV^/domega)**2) domega, V^ = V / V(0), with the
@@ -111,34 +119,49 @@ def sparc_spectrum(speed: ArrayLike, fs: float, fc: float = DEFAULT_FC, amp_th: 
         raise ValueError(f"no spectral magnitude at or above amp_th = {amp_th} up to fc = {fc} Hz")
     value = -_arc_length(Mf[None, :k], np.ones(1), first, last)[0] + 0.0
     band = slice(int(first[0]), int(last[0]) + 1)
-    capped = bool(np.any(Mf[k: n_fft // 2 + 1] >= amp_th))  # bins above fc up to Nyquist
-    return SparcSpectrum(float(value), f[:n_fft], Mf, f[band], Mf[band], float(f[band][-1]), n_fft,
-                         fs, float(fc), float(amp_th), capped)
+    capped = bool(np.any(Mf[k : n_fft // 2 + 1] >= amp_th))  # bins above fc up to Nyquist
+    return SparcSpectrum(
+        float(value), f[:n_fft], Mf, f[band], Mf[band], float(f[band][-1]), n_fft, fs, float(fc), float(amp_th), capped
+    )
 
 
-def sparc(speed: ArrayLike, fs: float, fc: float = DEFAULT_FC, amp_th: float = DEFAULT_AMP_TH,
-          padlevel: float = DEFAULT_PADLEVEL) -> float:
+def sparc(
+    speed: ArrayLike,
+    fs: float,
+    fc: float = DEFAULT_FC,
+    amp_th: float = DEFAULT_AMP_TH,
+    padlevel: float = DEFAULT_PADLEVEL,
+) -> float:
     """Spectral arc length SPARC of a speed profile (m/s) sampled at ``fs`` Hz; dimensionless, <= -1.
 
     Balasubramanian et al. 2015 (definition of SPARC, with the adaptive cut-off), computed as the
     authors' code ``monalysa.quality.smoothness.sparc``. ``fc`` (Hz, at most fs / 2) caps the band,
-    ``amp_th`` sets the adaptive cut-off, ``padlevel`` the zero padding. Closer to -1 is smoother. A band of a single bin
+    ``amp_th`` sets the adaptive cut-off, ``padlevel`` the zero padding. Closer to -1 is smoother. A band of
+    a single bin
     (grid step fs/nfft > fc) gives 0, as in the authors' code. See :func:`sparc_spectrum`."""
     return sparc_spectrum(speed, fs, fc, amp_th, padlevel).sparc
 
 
-def _sparc_blocks(speeds: Sequence[ArrayLike] | np.ndarray, fs: float, fc: float, amp_th: float,
-                  padlevel: float, bands: bool) -> np.ndarray:
+def _sparc_blocks(
+    speeds: Sequence[ArrayLike] | np.ndarray, fs: float, fc: float, amp_th: float, padlevel: float, bands: bool
+) -> np.ndarray:
     fs = _check_fs(fs)
     _check_params(fc, amp_th, padlevel, fs)
     with _one_blas_thread():
-        parts = [_sparc_block(*_pack(block, start), start, fs, fc, amp_th, padlevel, bands)
-                 for start, block in _blocks(speeds)]
+        parts = [
+            _sparc_block(*_pack(block, start), start, fs, fc, amp_th, padlevel, bands)
+            for start, block in _blocks(speeds)
+        ]
     return np.concatenate(parts) if parts else np.empty((0, 3))
 
 
-def sparc_many(speeds: Sequence[ArrayLike] | np.ndarray, fs: float, fc: float = DEFAULT_FC,
-               amp_th: float = DEFAULT_AMP_TH, padlevel: float = DEFAULT_PADLEVEL) -> np.ndarray:
+def sparc_many(
+    speeds: Sequence[ArrayLike] | np.ndarray,
+    fs: float,
+    fc: float = DEFAULT_FC,
+    amp_th: float = DEFAULT_AMP_TH,
+    padlevel: float = DEFAULT_PADLEVEL,
+) -> np.ndarray:
     """SPARC of each of many speed profiles (a ragged sequence of 1-D arrays, m/s, all at ``fs`` Hz).
 
     Same values as :func:`sparc` one by one (to rounding, about 1e-15), computed in batches of
@@ -156,8 +179,13 @@ class SparcBands(NamedTuple):
     capped: np.ndarray
 
 
-def sparc_bands(speeds: Sequence[ArrayLike] | np.ndarray, fs: float, fc: float = DEFAULT_FC,
-                amp_th: float = DEFAULT_AMP_TH, padlevel: float = DEFAULT_PADLEVEL) -> SparcBands:
+def sparc_bands(
+    speeds: Sequence[ArrayLike] | np.ndarray,
+    fs: float,
+    fc: float = DEFAULT_FC,
+    amp_th: float = DEFAULT_AMP_TH,
+    padlevel: float = DEFAULT_PADLEVEL,
+) -> SparcBands:
     """:func:`sparc_many` with how each band ended (:class:`SparcBands`; the same as
     :func:`sparc_spectrum`'s ``cutoff`` and ``capped`` one by one). ``capped`` is True when the normalised
     spectrum reaches ``amp_th`` at some bin above ``fc`` (and at or below the Nyquist frequency fs / 2): raising
@@ -167,6 +195,7 @@ def sparc_bands(speeds: Sequence[ArrayLike] | np.ndarray, fs: float, fc: float =
 
 
 # --- log dimensionless jerk ------------------------------------------------------------------------
+
 
 def _ldlj(n: np.ndarray, d2_cost: np.ndarray) -> np.ndarray:
     """LDLJ = -ln(n**3 * d2_cost), d2_cost = sum of the squared second differences of v / v_peak over
@@ -191,7 +220,7 @@ def ldlj(speed: ArrayLike, fs: float) -> float:
     v = _as_speed(speed, min_len=3)
     _check_fs(fs)
     d2 = np.diff(v / np.abs(v).max(), 2)
-    return float(_ldlj(v.size, np.sum(d2 ** 2)))
+    return float(_ldlj(v.size, np.sum(d2**2)))
 
 
 def ldlj_rows(speeds: ArrayLike, fs: float) -> np.ndarray:
@@ -205,11 +234,10 @@ def ldlj_rows(speeds: ArrayLike, fs: float) -> np.ndarray:
     if bad.any():
         _as_speed(v[np.flatnonzero(bad)[0]], f"speeds[{np.flatnonzero(bad)[0]}]")
     d2 = np.diff(v / np.abs(v).max(axis=1, keepdims=True), 2, axis=1)
-    return _ldlj(v.shape[1], np.sum(d2 ** 2, axis=1))
+    return _ldlj(v.shape[1], np.sum(d2**2, axis=1))
 
 
-def _ldlj_block(flat: np.ndarray, lengths: np.ndarray, start: int,
-                block: Sequence[ArrayLike]) -> np.ndarray:
+def _ldlj_block(flat: np.ndarray, lengths: np.ndarray, start: int, block: Sequence[ArrayLike]) -> np.ndarray:
     """LDLJ of each profile of one packed block: second differences of the concatenated samples,
     those straddling two profiles set to zero, summed per profile."""
     flat = flat[:-1]  # without _pack's trailing zero
@@ -228,21 +256,20 @@ def ldlj_many(speeds: Sequence[ArrayLike] | np.ndarray, fs: float) -> np.ndarray
     """LDLJ of each of many speed profiles (ragged, m/s, at ``fs`` Hz): :func:`ldlj` one by one,
     vectorised over the concatenated samples. ValueError names the index of a bad profile."""
     _check_fs(fs)  # LDLJ does not depend on fs (see ldlj)
-    parts = [_ldlj_block(*_pack(block, start, min_len=3), start, block)
-             for start, block in _blocks(speeds)]
+    parts = [_ldlj_block(*_pack(block, start, min_len=3), start, block) for start, block in _blocks(speeds)]
     return np.concatenate(parts) if parts else np.empty(0)
 
 
 # --- reference profiles ----------------------------------------------------------------------------
 
-def minimum_jerk_speed(t: ArrayLike, t0: ArrayLike = 0.0, T: ArrayLike = 1.0,
-                       D: ArrayLike = 1.0) -> np.ndarray:
+
+def minimum_jerk_speed(t: ArrayLike, t0: ArrayLike = 0.0, T: ArrayLike = 1.0, D: ArrayLike = 1.0) -> np.ndarray:
     """Speed (m/s) at times ``t`` (s) of a minimum-jerk submovement of amplitude D (m) and duration T (s)
     starting at t0 (s): v = (D/T) 30 tau**2 (1 - tau)**2, tau = (t - t0)/T in [0, 1], else 0; peak
     1.875 D/T at tau = 0.5 (Flash & Hogan 1985). Broadcasts, so submovements sum along an axis."""
     tau = (np.asarray(t, dtype=float) - t0) / T
     inside = (tau >= 0) & (tau <= 1)
-    return np.where(inside, np.asarray(D) / T * 30 * tau ** 2 * (1 - tau) ** 2, 0.0)
+    return np.where(inside, np.asarray(D) / T * 30 * tau**2 * (1 - tau) ** 2, 0.0)
 
 
 def minimum_jerk_segment(n: int, contact_ratio: float, fs: float, onset_ratio: float = 0.05) -> np.ndarray:
@@ -256,10 +283,12 @@ def minimum_jerk_segment(n: int, contact_ratio: float, fs: float, onset_ratio: f
     With v / v_peak = 16 tau**2 (1 - tau)**2 (Flash & Hogan 1985), onset and contact fall at
     tau = (1 -+ sqrt(1 - sqrt(ratio))) / 2."""
     if not (0 < onset_ratio < 1 and 0 < contact_ratio < 1) or n < 1:
-        raise ValueError(f"need n >= 1 and ratios in (0, 1); got n = {n}, onset_ratio = {onset_ratio}, "
-                         f"contact_ratio = {contact_ratio}")
+        raise ValueError(
+            f"need n >= 1 and ratios in (0, 1); got n = {n}, onset_ratio = {onset_ratio}, "
+            f"contact_ratio = {contact_ratio}"
+        )
     tau0 = (1 - np.sqrt(1 - np.sqrt(onset_ratio))) / 2
     tau_c = (1 + np.sqrt(1 - np.sqrt(contact_ratio))) / 2
     T = n / fs / (tau_c - tau0)  # s: the whole movement's duration
     tau = tau0 + np.arange(n) / fs / T
-    return 16 * tau ** 2 * (1 - tau) ** 2
+    return 16 * tau**2 * (1 - tau) ** 2

@@ -5,6 +5,7 @@ Short profiles get a direct DFT of the kept bins only (matrix products about the
 samples), long ones batched FFTs; both share :func:`_band` and :func:`_arc_length`, which implement
 the discrete SPARC sum of the book's chapter 1 (eq-sparc-sum).
 """
+
 from __future__ import annotations
 
 import contextlib
@@ -21,11 +22,12 @@ except ImportError:  # pragma: no cover
     ThreadpoolController = None
 
 _CHUNK = 65536  # profiles packed at a time in the *_many functions (bounds memory)
-_CACHE_ELEMENTS = 2 ** 15  # rows x bins per spectral batch: temporaries stay small (cache, no mmap)
+_CACHE_ELEMENTS = 2**15  # rows x bins per spectral batch: temporaries stay small (cache, no mmap)
 _DFT_FACTOR = 3.0  # direct DFT when L * n_bins < _DFT_FACTOR * nfft * log2(nfft) (measured crossover)
 
 
 # --- input checks ------------------------------------------------------------------------------
+
 
 def _check_fs(fs: float) -> float:
     fs = float(fs)  # Hz
@@ -41,8 +43,10 @@ def _check_params(fc: float, amp_th: float, padlevel: float, fs: float) -> None:
     if not float(fc) >= 0:  # also catches NaN
         raise ValueError(f"fc must be a cut-off frequency >= 0 Hz; got {fc}")
     if fc > fs / 2:
-        raise ValueError(f"fc = {fc:g} Hz lies above the Nyquist frequency {fs / 2:g} Hz of samples at {fs:g} Hz "
-                         f"(the band would run into the mirror image of the spectrum); use fc <= {fs / 2:g} Hz")
+        raise ValueError(
+            f"fc = {fc:g} Hz lies above the Nyquist frequency {fs / 2:g} Hz of samples at {fs:g} Hz "
+            f"(the band would run into the mirror image of the spectrum); use fc <= {fs / 2:g} Hz"
+        )
     if not np.isfinite(amp_th):
         raise ValueError(f"amp_th must be a finite amplitude threshold; got {amp_th}")
     if not np.isfinite(padlevel):
@@ -71,6 +75,7 @@ def _as_speed(speed: ArrayLike, what: str = "speed", min_len: int = 1) -> np.nda
 
 # --- the frequency grid --------------------------------------------------------------------------
 
+
 def _nffts(n: np.ndarray, padlevel: float) -> np.ndarray:
     out = np.power(2.0, np.ceil(np.log2(n)) + padlevel).astype(np.int64)
     if np.any(out < 1):
@@ -89,6 +94,7 @@ def _n_kept(f: np.ndarray, fc: float) -> int:
 
 
 # --- band and arc length (shared by every path) ----------------------------------------------------
+
 
 def _band(above: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """First and last bin of each row of ``above`` (rows x bins <= fc: magnitude >= amp_th).
@@ -123,6 +129,7 @@ def _arc_length(A: np.ndarray, peak: np.ndarray, first: np.ndarray, last: np.nda
 
 # --- many profiles, batched ---------------------------------------------------------------------------------
 
+
 def _pack(block: Sequence[ArrayLike], start: int, min_len: int = 1) -> tuple[np.ndarray, np.ndarray]:
     """Concatenate a block of 1-D profiles: (flat values followed by one 0.0, lengths).
 
@@ -152,7 +159,7 @@ def _blocks(speeds: Sequence[ArrayLike] | np.ndarray):
     if not isinstance(speeds, (Sequence, np.ndarray)):
         speeds = list(speeds)
     for start in range(0, len(speeds), _CHUNK):
-        yield start, speeds[start:start + _CHUNK]
+        yield start, speeds[start : start + _CHUNK]
 
 
 @lru_cache(maxsize=32)
@@ -189,16 +196,24 @@ def _power(P: np.ndarray, n_fft: int, k: int, signed: np.ndarray) -> tuple[np.nd
         peak2 = A2[:, 0].copy()  # for v >= 0 the DC bin is the maximum
         if signed.any():
             X = np.fft.rfft(P[signed], n_fft, axis=1)
-            peak2[signed] = (X.real ** 2 + X.imag ** 2).max(axis=1)
+            peak2[signed] = (X.real**2 + X.imag**2).max(axis=1)
         return A2, peak2
     # the whole spectrum only when the band passes Nyquist
     X = np.fft.rfft(P, n_fft, axis=1) if k <= n_fft // 2 + 1 else np.fft.fft(P, n_fft, axis=1)
-    A2 = X.real ** 2 + X.imag ** 2
+    A2 = X.real**2 + X.imag**2
     return A2[:, :k].copy(), A2.max(axis=1)
 
 
-def _sparc_block(flat: np.ndarray, lengths: np.ndarray, start: int, fs: float, fc: float,
-                 amp_th: float, padlevel: float, bands: bool = False) -> np.ndarray:
+def _sparc_block(
+    flat: np.ndarray,
+    lengths: np.ndarray,
+    start: int,
+    fs: float,
+    fc: float,
+    amp_th: float,
+    padlevel: float,
+    bands: bool = False,
+) -> np.ndarray:
     """SPARC of each profile of one packed block: grouped by nfft, in row batches that fit in cache.
 
     Returns (n, 3): SPARC, band end (Hz) and capped (1.0 / 0.0); the last two only when ``bands`` (else
@@ -213,7 +228,7 @@ def _sparc_block(flat: np.ndarray, lengths: np.ndarray, start: int, fs: float, f
     if zero.size:
         raise ValueError(f"speeds[{start + zero[0]}] is zero everywhere: no movement, no spectrum to normalise")
     signed = np.minimum.reduceat(flat[:-1], offsets) < 0
-    th2 = amp_th ** 2 if amp_th > 0 else -np.inf
+    th2 = amp_th**2 if amp_th > 0 else -np.inf
     # grouped by nfft and length: a profile's value then depends on its own samples only, not on which
     # other profiles share its batch (the partitions of skilllib.features give the in-memory values)
     for n_fft, length in map(tuple, np.unique(np.column_stack([n_ffts, lengths]), axis=0).tolist()):
@@ -224,7 +239,7 @@ def _sparc_block(flat: np.ndarray, lengths: np.ndarray, start: int, fs: float, f
         k = _n_kept(f, fc)
         k_eval = n_fft // 2 + 1 if bands else k  # up to Nyquist for the capped test (k <= that)
         step = max(8, _CACHE_ELEMENTS // max(k_eval, L))
-        for rows in (group[i:i + step] for i in range(0, group.size, step)):
+        for rows in (group[i : i + step] for i in range(0, group.size, step)):
             idx = np.where(col < lengths[rows, None], offsets[rows, None] + col, flat.size - 1)
             P = flat[idx]  # flat ends with a 0.0 (see _pack): the zero padding
             P /= scale[rows, None]
@@ -234,9 +249,12 @@ def _sparc_block(flat: np.ndarray, lengths: np.ndarray, start: int, fs: float, f
             bad = ~ok | (peak2 == 0)
             if bad.any():
                 j = int(np.argmax(bad))
-                raise ValueError(f"speeds[{start + rows[j]}] is zero over its first nfft = {n_fft} samples: "
-                                 "no spectrum to normalise" if peak2[j] == 0 else f"speeds[{start + rows[j]}]: "
-                                 f"no spectral magnitude at or above amp_th = {amp_th} up to fc = {fc} Hz")
+                raise ValueError(
+                    f"speeds[{start + rows[j]}] is zero over its first nfft = {n_fft} samples: no spectrum to normalise"
+                    if peak2[j] == 0
+                    else f"speeds[{start + rows[j]}]: "
+                    f"no spectral magnitude at or above amp_th = {amp_th} up to fc = {fc} Hz"
+                )
             A = np.sqrt(A2[:, :k])
             out[rows, 0] = -_arc_length(A, np.sqrt(peak2), first, last) + 0.0
             if bands:

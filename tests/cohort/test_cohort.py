@@ -1,4 +1,5 @@
 """Tests of skilllib.cohort: the seeded generator of the synthetic cohort and the committed data file."""
+
 from __future__ import annotations
 
 from dataclasses import replace
@@ -10,9 +11,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from skilllib.cohort import _calibration as calibration, _model as cohort
-from skilllib.recordings import COLUMNS, format_recordings, read_recordings, recordings_from_frame
+from skilllib.cohort import _calibration as calibration
+from skilllib.cohort import _model as cohort
 from skilllib.features import CONTACT_WINDOW, trial_features
+from skilllib.recordings import COLUMNS, format_recordings, read_recordings, recordings_from_frame
 
 ROOT = Path(__file__).resolve().parents[2]
 COHORT_CSV = ROOT / "data" / "cohort.csv"
@@ -33,7 +35,8 @@ def committed_features():
 def test_committed_file_is_what_the_seeded_generator_writes(full):
     assert COHORT_CSV.exists(), "data/cohort.csv is missing: run skilllib.cohort.write_cohort('data/cohort.csv')"
     assert format_recordings(full.frame).encode("utf-8") == COHORT_CSV.read_bytes(), (
-        "data/cohort.csv differs from generate_cohort(SEED): regenerate it with skilllib.cohort.write_cohort")
+        "data/cohort.csv differs from generate_cohort(SEED): regenerate it with skilllib.cohort.write_cohort"
+    )
 
 
 def test_the_paper_design_10_by_150_at_60_hz(full):
@@ -73,7 +76,7 @@ def test_trials_rest_then_touch_and_stay_in_the_workspace(full):
         y = g.y.to_numpy()
         travel = y[0] - y[ci:].max()
         assert 0.06 < travel < 0.23  # vertical travel of the start box (0.08-0.2 m, start box 2 cm)
-        assert np.ptp(y[ci + 3:]) < 0.003  # resting on the surface
+        assert np.ptp(y[ci + 3 :]) < 0.003  # resting on the surface
 
 
 def test_every_generated_trial_is_segmentable_and_estimates_match_truth(full, committed_features):
@@ -195,8 +198,14 @@ def test_participant_traits_fall_one_per_stratum(seed, n):
 
     m = replace(cohort.CohortModel(), n_participants=n)
     parts = pd.DataFrame(cohort._participants(np.random.default_rng(seed), m))
-    uniform = {"travel": m.travel, "surface_y": m.surface_y, "dur_within": m.dur_within,
-               "aim_within": m.aim_within, "rtpv": m.rtpv, "correction_rate": m.correction_rate}
+    uniform = {
+        "travel": m.travel,
+        "surface_y": m.surface_y,
+        "dur_within": m.dur_within,
+        "aim_within": m.aim_within,
+        "rtpv": m.rtpv,
+        "correction_rate": m.correction_rate,
+    }
     for col, (lo, hi) in uniform.items():
         strata = np.floor((parts[col] - lo) / (hi - lo) * n).astype(int)
         assert sorted(strata) == list(range(n)), col

@@ -4,6 +4,7 @@ Issue 15: "Results identical to the in-memory path on the cohort (a test on a Lo
 book's cohort is written as a folder of three Parquet files (whole trials in each); the cluster's
 feature table must equal, bit for bit, the table of the in-memory path on the cohort's CSV.
 """
+
 from __future__ import annotations
 
 import json
@@ -11,11 +12,11 @@ import json
 import pandas as pd
 import pytest
 
+from skilllib.datasets import cohort_path
 from skilllib.features import _dask as partitions
+from skilllib.features import trial_features
 from skilllib.pipeline import _run as pipeline
 from skilllib.recordings import DataFormatError, read_recordings
-from skilllib.datasets import cohort_path
-from skilllib.features import trial_features
 
 
 def write_parts(folder, frame, cuts):
@@ -61,8 +62,11 @@ def test_a_trial_split_across_partitions_is_an_error_naming_both_files(tmp_path,
     """A cut inside a trial: the message names the trial and the two files."""
     cut = int((cohort_frame["trial"].astype(str).to_numpy() == "2").argmax()) - 10  # inside trial 1 of "1"
     folder = write_parts(tmp_path / "split", cohort_frame.iloc[:3000], [cut])
-    with pytest.raises(DataFormatError, match=r"trial '1' of participant '1' lies in two partitions, "
-                                              r"part-0.parquet and part-1.parquet"):
+    with pytest.raises(
+        DataFormatError,
+        match=r"trial '1' of participant '1' lies in two partitions, "
+        r"part-0.parquet and part-1.parquet",
+    ):
         partitions.corpus_features(folder, client)
 
 

@@ -1,4 +1,5 @@
 """Tests of skilllib.features: speed, onset/contact segmentation, per-trial features, selection."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -6,12 +7,9 @@ import pandas as pd
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
 from monalysa.quality.smoothness import log_dimensionless_jerk as ldlj_authors
 from monalysa.quality.smoothness import sparc as sparc_authors
 
-from skilllib.features import _segmentation as kinematics, _table as features
-from skilllib.recordings import recordings_from_frame
 from skilllib.features import (
     CONTACT_WINDOW,
     DIFF_SPAN_S,
@@ -19,6 +17,7 @@ from skilllib.features import (
     MIN_SEGMENT_SAMPLES,
     ONSET_SPEED,
     SPARC_PARAMS,
+    diff_window,
     participant_summary,
     segment,
     segment_arrays,
@@ -26,8 +25,9 @@ from skilllib.features import (
     status_counts,
     trial_features,
     velocity,
-    diff_window,
 )
+from skilllib.features import _segmentation as kinematics
+from skilllib.recordings import recordings_from_frame
 
 FS = 60.0
 
@@ -49,8 +49,19 @@ def frame_of(trials: dict) -> pd.DataFrame:
     """Long table from {(participant, trial): (t, pos, contact)}."""
     parts = []
     for (p, tr), (t, pos, c) in trials.items():
-        parts.append(pd.DataFrame({"participant": p, "trial": tr, "t": t, "x": pos[:, 0], "y": pos[:, 1],
-                                   "z": pos[:, 2], "contact": c.astype(int)}))
+        parts.append(
+            pd.DataFrame(
+                {
+                    "participant": p,
+                    "trial": tr,
+                    "t": t,
+                    "x": pos[:, 0],
+                    "y": pos[:, 1],
+                    "z": pos[:, 2],
+                    "contact": c.astype(int),
+                }
+            )
+        )
     return pd.concat(parts, ignore_index=True)
 
 
@@ -65,8 +76,7 @@ def test_velocity_is_exact_for_quadratic_motion():
 @pytest.mark.parametrize("n", [3, 4, 7, 90])
 def test_velocity_at_60_hz_is_the_second_order_finite_difference(n):
     pos = np.random.default_rng(n).normal(size=(n, 3)).cumsum(axis=0) * 1e-3
-    np.testing.assert_allclose(velocity(pos, FS), np.gradient(pos, 1 / FS, axis=0, edge_order=2),
-                               rtol=0, atol=1e-12)
+    np.testing.assert_allclose(velocity(pos, FS), np.gradient(pos, 1 / FS, axis=0, edge_order=2), rtol=0, atol=1e-12)
 
 
 @pytest.mark.parametrize("fs", [30.0, 120.0, 500.0, 1000.0])
@@ -161,13 +171,16 @@ def test_segment_runs_from_onset_to_the_last_sample_before_contact():
     assert seg.speed[-1] > 0.3  # contact with non-zero speed: the approach is cut, not ended
 
 
-@pytest.mark.parametrize("make, reason", [
-    (lambda: approach(amp=0.10, surface=0.2), "no contact"),
-    (lambda: (lambda t, p, c: (t, p, np.ones_like(c)))(*approach()), "in contact from sample 1"),
-    (lambda: approach(amp=0.15, surface=0.008), "too short: 3 samples"),
-    (lambda: approach(amp=0.002, dur=1.0, surface=0.0019), "no onset"),
-    (lambda: approach(rest=-0.2), "no rest before onset"),
-])
+@pytest.mark.parametrize(
+    "make, reason",
+    [
+        (lambda: approach(amp=0.10, surface=0.2), "no contact"),
+        (lambda: (lambda t, p, c: (t, p, np.ones_like(c)))(*approach()), "in contact from sample 1"),
+        (lambda: approach(amp=0.15, surface=0.008), "too short: 3 samples"),
+        (lambda: approach(amp=0.002, dur=1.0, surface=0.0019), "no onset"),
+        (lambda: approach(rest=-0.2), "no rest before onset"),
+    ],
+)
 def test_trials_that_cannot_be_segmented_give_a_reason(make, reason):
     out = segment_arrays(*make(), FS)
     assert isinstance(out, str) and out.startswith(reason), out
@@ -187,8 +200,13 @@ def test_every_trial_is_kept_with_status_and_reason():
     f = trial_features(pd.concat([df, bad], ignore_index=True))
     bad_row = len(df) + 5
     assert list(f.columns) == list(FEATURE_COLUMNS)
-    assert f[["participant", "trial"]].apply(tuple, axis=1).tolist() == [("1", "1"), ("1", "2"), ("1", "3"),
-                                                                          ("1", "4"), ("2", "1")]
+    assert f[["participant", "trial"]].apply(tuple, axis=1).tolist() == [
+        ("1", "1"),
+        ("1", "2"),
+        ("1", "3"),
+        ("1", "4"),
+        ("2", "1"),
+    ]
     assert f.status.tolist() == ["selected", "excluded", "excluded", "invalid", "invalid"]
     assert f.reason[0] == ""
     assert f.reason[1].startswith("contact speed") and "above 0.7 m/s" in f.reason[1]
@@ -252,8 +270,9 @@ def test_features_match_an_independent_computation():
     assert f.pv == pytest.approx(v.max(), rel=1e-9) and f.contact_speed == pytest.approx(v[-1], rel=1e-9)
     assert f.duration == pytest.approx((ci - o) / FS, rel=1e-9)
     p = SPARC_PARAMS
-    assert f.sparc == pytest.approx(sparc_authors(v, FS, padlevel=p["padlevel"], fc=p["fc"],
-                                                  amp_th=p["amp_th"])[0], abs=1e-9)
+    assert f.sparc == pytest.approx(
+        sparc_authors(v, FS, padlevel=p["padlevel"], fc=p["fc"], amp_th=p["amp_th"])[0], abs=1e-9
+    )
     assert f.ldlj == pytest.approx(ldlj_authors(v, FS), abs=1e-9)
     seg = segment(rec, 3, 7)
     assert (seg.onset, seg.contact) == (o, ci)
@@ -285,8 +304,13 @@ def test_summaries_count_every_trial():
 
 
 @settings(max_examples=30, deadline=None)
-@given(shift=st.tuples(*[st.floats(-0.2, 0.2)] * 3), angle=st.floats(0, 2 * np.pi),
-       t0=st.floats(0, 100), amp=st.floats(0.12, 0.3), dur=st.floats(0.3, 0.9))
+@given(
+    shift=st.tuples(*[st.floats(-0.2, 0.2)] * 3),
+    angle=st.floats(0, 2 * np.pi),
+    t0=st.floats(0, 100),
+    amp=st.floats(0.12, 0.3),
+    dur=st.floats(0.3, 0.9),
+)
 def test_features_invariant_to_translation_rotation_and_time_origin(shift, angle, t0, amp, dur):
     """Speed-based features do not depend on the frame's origin, a rotation about the vertical or the
     time origin (only t_onset / t_contact move with it)."""
@@ -301,6 +325,7 @@ def test_features_invariant_to_translation_rotation_and_time_origin(shift, angle
 
 
 # --- segmentation thresholds at both sides of their edge -------------------------------------------
+
 
 def ramp(n=30, start=10, u=0.5, fs=FS):
     """Rest at y = 0 up to sample ``start`` - 1, then y falls at ``u`` m/s: the second-order difference
@@ -341,8 +366,9 @@ def test_onset_speed_exactly_at_the_threshold_does_not_start_the_movement(monkey
     seg = segment_arrays(np.arange(n + 3) / FS, np.zeros((n + 3, 3)), contact, FS)
     assert not isinstance(seg, str), seg
     assert seg.onset == 4 and seg.speed[0] == above
-    all_at = segment_arrays(np.arange(n + 3) / FS, np.zeros((n + 3, 3)), contact, FS,
-                            onset_speed=0.5)  # the maximum: nothing strictly above it
+    all_at = segment_arrays(
+        np.arange(n + 3) / FS, np.zeros((n + 3, 3)), contact, FS, onset_speed=0.5
+    )  # the maximum: nothing strictly above it
     assert all_at.startswith("no onset")
 
 
@@ -359,11 +385,14 @@ def test_onset_speed_with_the_real_derivative(inside):
     assert f.t_onset == t[9 if inside else 10]
 
 
-@pytest.mark.parametrize("first_contact, reason", [
-    (0, "in contact from sample 1: no approach recorded before contact"),
-    (1, "in contact from sample 2: no approach recorded before contact"),
-    (2, "no onset: speed stays below"),  # past the rule: two samples can be differentiated
-])
+@pytest.mark.parametrize(
+    "first_contact, reason",
+    [
+        (0, "in contact from sample 1: no approach recorded before contact"),
+        (1, "in contact from sample 2: no approach recorded before contact"),
+        (2, "no onset: speed stays below"),  # past the rule: two samples can be differentiated
+    ],
+)
 def test_contact_from_the_first_or_second_sample(first_contact, reason):
     """Contact at sample index 0 or 1 leaves fewer than 2 samples to differentiate; at index 2 the
     approach is differentiated (at rest here: no onset). The 2 is a bare literal in segment_arrays.

@@ -5,28 +5,33 @@ IQRs against numpy), and small details of segmentation and trial_features.
 The tables are checked on hand-made feature tables (their values are then known), rest_speed and the
 segmentation on a few synthetic minimum-jerk approaches.
 """
+
 from __future__ import annotations
 
 import numpy as np
 import pandas as pd
 import pytest
 
-from skilllib.features import _table as features
-from skilllib.recordings import recordings_from_frame
-from skilllib.features import Lowpass
 from skilllib.features import (
     CONTACT_WINDOW,
     ONSET_SPEED,
+    Lowpass,
     participant_summary,
     rest_speed,
     status_counts,
     trial_features,
 )
+from skilllib.features import _table as features
+from skilllib.recordings import recordings_from_frame
 
 FS = 60.0
 STATUSES = ["selected", "excluded", "invalid"]
-SUMMARY_FEATURES = {"pv": "PV (m/s)", "contact_speed": "contact speed (m/s)", "duration": "duration (s)",
-                    "sparc": "SPARC"}
+SUMMARY_FEATURES = {
+    "pv": "PV (m/s)",
+    "contact_speed": "contact speed (m/s)",
+    "duration": "duration (s)",
+    "sparc": "SPARC",
+}
 NOISE_SD = 0.03e-3  #: m, the Phantom's position resolution (module docstring of skilllib.features)
 
 
@@ -45,9 +50,23 @@ def approach(amp=0.15, dur=0.5, surface=0.12, rest=0.6, after=0.3, fs=FS, seed=N
 
 def frame_of(trials: dict) -> pd.DataFrame:
     """Long table from {(participant, trial): (t, pos, contact)}."""
-    return pd.concat([pd.DataFrame({"participant": p, "trial": tr, "t": t, "x": pos[:, 0], "y": pos[:, 1],
-                                    "z": pos[:, 2], "contact": c.astype(int)})
-                      for (p, tr), (t, pos, c) in trials.items()], ignore_index=True)
+    return pd.concat(
+        [
+            pd.DataFrame(
+                {
+                    "participant": p,
+                    "trial": tr,
+                    "t": t,
+                    "x": pos[:, 0],
+                    "y": pos[:, 1],
+                    "z": pos[:, 2],
+                    "contact": c.astype(int),
+                }
+            )
+            for (p, tr), (t, pos, c) in trials.items()
+        ],
+        ignore_index=True,
+    )
 
 
 def central_speeds(pos: np.ndarray, fs: float) -> np.ndarray:
@@ -57,11 +76,15 @@ def central_speeds(pos: np.ndarray, fs: float) -> np.ndarray:
 
 # --- rest_speed ----------------------------------------------------------------------------------------
 
+
 @pytest.fixture(scope="module")
 def noisy():
     """Two noisy valid trials of participant 1, a third that never touches (invalid), their features."""
-    trials = {("1", "1"): approach(seed=1), ("1", "2"): approach(amp=0.2, rest=0.8, seed=2),
-              ("1", "3"): approach(amp=0.10, surface=0.2, seed=3)}
+    trials = {
+        ("1", "1"): approach(seed=1),
+        ("1", "2"): approach(amp=0.2, rest=0.8, seed=2),
+        ("1", "3"): approach(amp=0.10, surface=0.2, seed=3),
+    }
     rec = recordings_from_frame(frame_of(trials))
     return trials, rec, trial_features(rec)
 
@@ -75,7 +98,7 @@ def test_rest_speed_is_the_central_difference_speed_before_the_margin(noisy):
     assert f.status.tolist()[:2] != ["invalid", "invalid"] and f.status[2] == "invalid"
     for margin in (0.2, 0.35):
         want = []
-        for (key, (t, pos, _)), row in zip(trials.items(), f.itertuples()):
+        for (_key, (t, pos, _)), row in zip(trials.items(), f.itertuples()):
             if row.status == "invalid":
                 continue
             o = int(np.flatnonzero(t >= row.t_onset - margin)[0])
@@ -118,6 +141,7 @@ def test_rest_speed_without_valid_trials_is_empty(noisy):
 
 # --- status_counts --------------------------------------------------------------------------------------
 
+
 def table(rows: list[tuple]) -> pd.DataFrame:
     """A features table from (participant, status, pv, contact_speed, duration, sparc) rows."""
     f = pd.DataFrame(rows, columns=["participant", "status", "pv", "contact_speed", "duration", "sparc"])
@@ -128,8 +152,13 @@ def table(rows: list[tuple]) -> pd.DataFrame:
 def test_status_counts_has_every_status_column_even_when_none_occurs():
     """Columns selected, excluded, invalid, total in that order, with integer zeros for a status no trial
     has (here: no invalid trial). Catches columns left to the crosstab and a missing fill value (NaN)."""
-    f = table([("2", "selected", 1, 0.5, 0.4, -1.5), ("2", "excluded", 1, 0.8, 0.3, -1.6),
-               ("10", "selected", 1, 0.4, 0.5, -1.4)])
+    f = table(
+        [
+            ("2", "selected", 1, 0.5, 0.4, -1.5),
+            ("2", "excluded", 1, 0.8, 0.3, -1.6),
+            ("10", "selected", 1, 0.4, 0.5, -1.4),
+        ]
+    )
     t = status_counts(f)
     assert t.columns.tolist() == [*STATUSES, "total"]
     assert t.index.tolist() == ["2", "10", "all"]
@@ -140,8 +169,14 @@ def test_status_counts_has_every_status_column_even_when_none_occurs():
 
 def test_status_counts_counts_invalid_trials():
     """Catches a misspelt 'invalid' column (its counts lost as zeros)."""
-    f = table([("1", "invalid", np.nan, np.nan, np.nan, np.nan), ("1", "invalid", np.nan, np.nan, np.nan, np.nan),
-               ("1", "selected", 1, 0.5, 0.4, -1.5), ("3", "invalid", np.nan, np.nan, np.nan, np.nan)])
+    f = table(
+        [
+            ("1", "invalid", np.nan, np.nan, np.nan, np.nan),
+            ("1", "invalid", np.nan, np.nan, np.nan, np.nan),
+            ("1", "selected", 1, 0.5, 0.4, -1.5),
+            ("3", "invalid", np.nan, np.nan, np.nan, np.nan),
+        ]
+    )
     t = status_counts(f)
     assert t.loc["1"].tolist() == [1, 0, 2, 3] and t.loc["3"].tolist() == [0, 0, 1, 1]
     assert t.loc["all"].tolist() == [1, 0, 3, 4]
@@ -149,14 +184,17 @@ def test_status_counts_counts_invalid_trials():
 
 # --- participant_summary --------------------------------------------------------------------------------
 
+
 @pytest.fixture(scope="module")
 def summary_table() -> pd.DataFrame:
     """Participant 'P2' with 5 valid trials and 2 invalid ones (NaN features), 'P10' with 3 valid ones;
     the features are distinct random numbers, so medians and IQRs of wrong subsets differ."""
     rng = np.random.default_rng(7)
     rows = []
-    for p, statuses in (("P10", ["selected", "excluded", "selected"]),
-                        ("P2", ["invalid", "selected", "excluded", "excluded", "invalid", "selected", "selected"])):
+    for p, statuses in (
+        ("P10", ["selected", "excluded", "selected"]),
+        ("P2", ["invalid", "selected", "excluded", "excluded", "invalid", "selected", "selected"]),
+    ):
         for s in statuses:
             vals = [np.nan] * 4 if s == "invalid" else list(rng.uniform(0.1, 2.0, 4))
             rows.append((p, s, *vals))
@@ -191,6 +229,7 @@ def test_participant_summary_counts_valid_trials_and_their_medians_and_iqrs(summ
 
 # --- trial_features details ----------------------------------------------------------------------------
 
+
 def test_default_window_and_onset_are_the_constants():
     """trial_features(window=..., onset_speed=...) defaults equal the module constants."""
     df = frame_of({("1", "1"): approach(), ("1", "2"): approach(amp=0.30, dur=0.3)})
@@ -220,10 +259,11 @@ def test_a_lowpass_filters_the_approach_before_differentiating():
     np.testing.assert_allclose(seg.pos, filtered[o:], rtol=0, atol=1e-12)
     np.testing.assert_allclose(seg.speed, speed[o:], rtol=1e-9, atol=1e-12)
     unfiltered = features.segment_arrays(t, pos, c, FS, lowpass=Lowpass(None, "none"))
-    np.testing.assert_array_equal(unfiltered.pos, pos[unfiltered.onset:ci])
+    np.testing.assert_array_equal(unfiltered.pos, pos[unfiltered.onset : ci])
 
 
 # --- segment and segment_arrays details -----------------------------------------------------------------
+
 
 def test_no_rest_reason_gives_the_speed_at_the_first_sample():
     """A recording that starts in motion, accelerating (y = -(v0 t + a t^2 / 2), exact for the three-point
@@ -232,8 +272,10 @@ def test_no_rest_reason_gives_the_speed_at_the_first_sample():
     t = np.arange(n) / FS
     pos = np.column_stack([np.zeros(n), -(v0 * t + a * t**2 / 2), np.zeros(n)])
     out = features.segment_arrays(t, pos, np.arange(n) >= 20, FS)
-    assert out == (f"no rest before onset: speed {v0:.2f} m/s > {ONSET_SPEED:g} m/s at the first sample "
-                   f"(the movement started before the recording)")
+    assert out == (
+        f"no rest before onset: speed {v0:.2f} m/s > {ONSET_SPEED:g} m/s at the first sample "
+        f"(the movement started before the recording)"
+    )
 
 
 def test_segment_arrays_returns_float_arrays_and_the_given_ids():
@@ -245,8 +287,8 @@ def test_segment_arrays_returns_float_arrays_and_the_given_ids():
     seg = features.segment_arrays(t, pos, np.arange(n) >= contact_at, 1.0, participant="P7", trial="12")
     assert (seg.participant, seg.trial) == ("P7", "12")
     assert seg.t.dtype == float and seg.pos.dtype == float
-    np.testing.assert_array_equal(seg.t, t[seg.onset:contact_at])
-    np.testing.assert_array_equal(seg.pos, pos[seg.onset:contact_at])
+    np.testing.assert_array_equal(seg.t, t[seg.onset : contact_at])
+    np.testing.assert_array_equal(seg.pos, pos[seg.onset : contact_at])
     assert seg.onset == start  # the central difference between the rest and the first step: 0.5 m/s
 
 
@@ -264,7 +306,7 @@ def test_segment_looks_up_the_status_of_its_own_trial(mixed_rec):
     seg = features.segment(mixed_rec, 1, 2)
     assert (seg.participant, seg.trial) == ("1", "2")
     t, pos, c = approach(amp=0.16)
-    np.testing.assert_array_equal(seg.t, t[seg.onset:seg.contact])
+    np.testing.assert_array_equal(seg.t, t[seg.onset : seg.contact])
 
 
 def test_segment_of_a_trial_with_bad_data_names_the_reason(mixed_rec):
@@ -282,14 +324,17 @@ def test_segment_passes_its_options_on(mixed_rec):
         assert (seg.onset, seg.contact) == (want.onset, want.contact)
         np.testing.assert_array_equal(seg.speed, want.speed)
         np.testing.assert_array_equal(seg.pos, want.pos)
-    assert features.segment(mixed_rec, "1", "2", onset_speed=4 * ONSET_SPEED).onset > \
-        features.segment(mixed_rec, "1", "2").onset
+    assert (
+        features.segment(mixed_rec, "1", "2", onset_speed=4 * ONSET_SPEED).onset
+        > features.segment(mixed_rec, "1", "2").onset
+    )
     n = len(features.segment(mixed_rec, "1", "2").speed)
     with pytest.raises(ValueError, match=f"cannot be segmented: too short: {n} samples"):
         features.segment(mixed_rec, "1", "2", min_samples=n + 1)
 
 
 # --- approaches and run_lowpass -------------------------------------------------------------------------
+
 
 def test_approaches_are_the_positions_before_contact_of_usable_trials(mixed_rec):
     """In trial order, each usable trial's positions before its first contact sample, a trial that never
@@ -301,7 +346,7 @@ def test_approaches_are_the_positions_before_contact_of_usable_trials(mixed_rec)
     t2, pos2, c2 = approach(amp=0.16)
     _, pos3, c3 = approach(amp=0.10, surface=0.2)
     assert not c3.any() and len(out) == 2
-    np.testing.assert_array_equal(out[0], pos2[:int(np.flatnonzero(c2)[0])])
+    np.testing.assert_array_equal(out[0], pos2[: int(np.flatnonzero(c2)[0])])
     np.testing.assert_array_equal(out[1], pos3)
 
 
@@ -315,8 +360,15 @@ def test_run_lowpass_defaults_to_auto(noisy):
 def test_select_keeps_the_feature_columns_and_renumbers_the_rows():
     """select(): the selected rows, the same columns (no old index added as a column), index 0..n-1."""
     from skilllib.features import select
-    f = pd.DataFrame({"participant": ["1", "1", "2"], "trial": ["1", "2", "1"],
-                      "status": ["excluded", "selected", "selected"], "pv": [0.1, 0.2, 0.3]})
+
+    f = pd.DataFrame(
+        {
+            "participant": ["1", "1", "2"],
+            "trial": ["1", "2", "1"],
+            "status": ["excluded", "selected", "selected"],
+            "pv": [0.1, 0.2, 0.3],
+        }
+    )
     s = select(f)
     assert list(s.columns) == list(f.columns)
     assert list(s.index) == [0, 1] and list(s["pv"]) == [0.2, 0.3]
@@ -326,9 +378,9 @@ def test_auto_lowpass_estimates_the_noise_with_the_rates_own_derivative_window()
     """At 1 kHz the derivative window is wider than its minimum; run_lowpass("auto") must estimate the
     speed noise with the window of the recordings' rate. Catches the minimum window used at every rate."""
     from skilllib.cohort import CohortModel, generate_cohort
-    from skilllib.features import MIN_DIFF_WINDOW, approaches, diff_window, run_lowpass
-    from skilllib.features import choose_lowpass
+    from skilllib.features import MIN_DIFF_WINDOW, approaches, choose_lowpass, diff_window, run_lowpass
     from skilllib.pipeline import load_input
+
     fs = 1000.0
     rec = load_input(generate_cohort(1, CohortModel(n_participants=1, n_trials=3, fs=fs)).frame)
     assert rec.fs == pytest.approx(fs) and diff_window(rec.fs) != MIN_DIFF_WINDOW

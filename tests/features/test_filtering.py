@@ -1,4 +1,5 @@
 """The positions' low-pass filter (skilllib.features) and what it does for noisy recordings (issue 12)."""
+
 from __future__ import annotations
 
 from dataclasses import replace
@@ -9,10 +10,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.signal import butter, sosfreqz
 
-from skilllib.features import _filtering as flt
 from skilllib.cohort import CohortModel, generate_cohort
-from skilllib.recordings import recordings_from_frame
+from skilllib.features import _filtering as flt
 from skilllib.features import approaches, diff_window, run_lowpass, trial_features
+from skilllib.recordings import recordings_from_frame
 
 
 def test_the_cut_off_is_the_minus_3_db_point_of_the_forward_backward_filter():
@@ -29,7 +30,7 @@ def test_the_filter_has_no_lag_and_passes_slow_movements():
     """A bell well below the cut-off keeps its peak time and height (zero phase; the ends extended)."""
     fs = 200.0
     t = np.arange(300) / fs
-    y = np.exp(-((t - 0.7) / 0.15) ** 2)[:, None] * np.array([0.0, 0.1, 0.02])
+    y = np.exp(-(((t - 0.7) / 0.15) ** 2))[:, None] * np.array([0.0, 0.1, 0.02])
     out = flt.butterworth_lowpass(y, fs, 10.0)
     assert np.argmax(out[:, 1]) == np.argmax(y[:, 1])
     assert np.abs(out - y).max() < 1e-3 * 0.1
@@ -68,7 +69,7 @@ def test_speed_noise_matches_a_monte_carlo_derivative():
     for cut in (None, 8.0):
         y = x if cut is None else flt.butterworth_lowpass(x, fs, cut)
         v = velocity(y, fs)[100:-100]
-        measured = np.sqrt(np.mean(np.sum(v ** 2, axis=1)))
+        measured = np.sqrt(np.mean(np.sum(v**2, axis=1)))
         assert flt.speed_noise(sd, fs, diff_window(fs), cut) == pytest.approx(measured, rel=0.05)
 
 
@@ -148,5 +149,7 @@ def test_winters_cut_off_is_used_when_the_noise_needs_a_filter():
     assert lp.chosen_by == "winter residual analysis" and lp.cutoff_hz == pytest.approx(ra.cutoff_hz)
     assert lp.noise_m == pytest.approx(0.0005, rel=0.15) and lp.speed_noise > flt.SPEED_NOISE_LIMIT
     d = lp.to_dict()
-    assert d["cutoff_hz"] == lp.cutoff_hz and d["design_hz"] == pytest.approx(flt.design_frequency(lp.cutoff_hz, fs=rec.fs))
+    assert d["cutoff_hz"] == lp.cutoff_hz and d["design_hz"] == pytest.approx(
+        flt.design_frequency(lp.cutoff_hz, fs=rec.fs)
+    )
     assert (d["order"], d["passes"]) == (2, 2)

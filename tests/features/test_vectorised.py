@@ -13,6 +13,7 @@ reference of the other in a test").
 
 The recordings are a "zoo": generated trials plus every way a trial can fail segmentation or validation.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -21,30 +22,30 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from skilllib.recordings import _checks as checks, _timing as timing
-from skilllib.smoothness import _measures as smoothness
 from skilllib.cohort import CohortModel, generate_cohort
-from skilllib.recordings import read_table
-from skilllib.recordings import read_recordings, recordings_from_frame
 from skilllib.datasets import cohort_path
 from skilllib.features import (
     CONTACT_WINDOW,
     FEATURE_COLUMNS,
     SPARC_PARAMS,
+    Lowpass,
     run_lowpass,
     segment_arrays,
     trial_features,
 )
-from skilllib.features import Lowpass
-from skilllib.recordings import Runs, first_true
+from skilllib.recordings import Runs, first_true, read_recordings, read_table, recordings_from_frame
+from skilllib.recordings import _checks as checks
+from skilllib.recordings import _timing as timing
+from skilllib.smoothness import _measures as smoothness
 
 
 def reference_features(rec, lowpass="auto", window=CONTACT_WINDOW) -> pd.DataFrame:
     """The per-trial loop: segment each usable trial, its features, SPARC of all segments, the status."""
     filt = run_lowpass(rec, lowpass)
     rows, speeds = [], []
-    for (p, tr), status, reason, note in zip(rec.keys(), rec.trials["status"], rec.trials["reason"],
-                                             rec.trials["timing"]):
+    for (p, tr), status, reason, note in zip(
+        rec.keys(), rec.trials["status"], rec.trials["reason"], rec.trials["timing"]
+    ):
         row = {"participant": p, "trial": tr, "status": "invalid", "reason": reason, "resampled": bool(note)}
         if status == "ok":
             d = rec.trial(p, tr)
@@ -55,19 +56,36 @@ def reference_features(rec, lowpass="auto", window=CONTACT_WINDOW) -> pd.DataFra
                 v = seg.speed
                 lo, hi = window
                 cs = float(v[-1])
-                why = (f"contact speed {cs:.3f} m/s below {lo:g} m/s" if cs < lo else
-                       f"contact speed {cs:.3f} m/s above {hi:g} m/s" if cs > hi else "")
-                row.update(status="excluded" if why else "selected", reason=why, pv=float(v.max()),
-                           contact_speed=cs, duration=seg.duration, ldlj=smoothness.ldlj(v, rec.fs), n=len(v),
-                           t_onset=float(d.t[seg.onset]), t_contact=float(d.t[seg.contact]), _k=len(speeds))
+                why = (
+                    f"contact speed {cs:.3f} m/s below {lo:g} m/s"
+                    if cs < lo
+                    else f"contact speed {cs:.3f} m/s above {hi:g} m/s"
+                    if cs > hi
+                    else ""
+                )
+                row.update(
+                    status="excluded" if why else "selected",
+                    reason=why,
+                    pv=float(v.max()),
+                    contact_speed=cs,
+                    duration=seg.duration,
+                    ldlj=smoothness.ldlj(v, rec.fs),
+                    n=len(v),
+                    t_onset=float(d.t[seg.onset]),
+                    t_contact=float(d.t[seg.contact]),
+                    _k=len(speeds),
+                )
                 speeds.append(v)
         rows.append(row)
     bands = smoothness.sparc_bands(speeds, rec.fs, **SPARC_PARAMS) if speeds else None
     for row in rows:
         if "_k" in row:
             k = row.pop("_k")
-            row.update(sparc=float(bands.sparc[k]), sparc_band_end_hz=float(bands.band_end_hz[k]),
-                       sparc_capped=bool(bands.capped[k]))
+            row.update(
+                sparc=float(bands.sparc[k]),
+                sparc_band_end_hz=float(bands.band_end_hz[k]),
+                sparc_capped=bool(bands.capped[k]),
+            )
     out = pd.DataFrame(rows, columns=list(FEATURE_COLUMNS))
     out["n"] = out["n"].astype("Int64")
     out["sparc_capped"] = out["sparc_capped"].astype("boolean")
@@ -155,7 +173,9 @@ def reference_validation(frame: pd.DataFrame) -> tuple[list[str], float]:
     """The per-trial checks: trial_problem, then the rate from each trial's intervals, units, timing."""
     keys = list(dict.fromkeys(zip(frame["participant"], frame["trial"])))
     t, pos, c = frame["t"].to_numpy(float), frame[["x", "y", "z"]].to_numpy(float), frame["contact"].to_numpy(float)
-    rows = [np.flatnonzero((frame["participant"] == p).to_numpy() & (frame["trial"] == tr).to_numpy()) for p, tr in keys]
+    rows = [
+        np.flatnonzero((frame["participant"] == p).to_numpy() & (frame["trial"] == tr).to_numpy()) for p, tr in keys
+    ]
     reasons = [checks.trial_problem(t[r], pos[r], c[r], r, int, lambda i: f"row {i}") for r in rows]
     ok = [i for i, r in enumerate(reasons) if not r]
     med = np.array([np.median(np.diff(t[rows[i]])) for i in ok])

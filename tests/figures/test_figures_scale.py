@@ -1,5 +1,6 @@
 """Figures of a run on a corpus (issue 15): per-participant figures draw the first 12 participants and
 say so; dense plots are rasterized inside the SVG; the scaling figure draws every series it is given."""
+
 from __future__ import annotations
 
 import matplotlib
@@ -36,10 +37,23 @@ def test_a_dense_plot_is_an_image_in_the_svg_and_a_sparse_one_stays_vectors(tmp_
 
 
 def test_the_scaling_figure_draws_each_series_and_leaves_out_failed_runs():
-    rows = [{"trials": n, "input": kind, "mode": mode, "failed": int(fail), "wall_s": n / 1e4,
-             "peak_main_mb": 100 + n / 1e3, "peak_worker_mb": 50.0 if mode == "dask" else None}
-            for n in (1_500, 15_000, 150_000) for mode, kind, fail in
-            (("inmemory", "csv", False), ("inmemory", "parquet", False), ("dask", "parquet", n == 150_000))]
+    rows = [
+        {
+            "trials": n,
+            "input": kind,
+            "mode": mode,
+            "failed": int(fail),
+            "wall_s": n / 1e4,
+            "peak_main_mb": 100 + n / 1e3,
+            "peak_worker_mb": 50.0 if mode == "dask" else None,
+        }
+        for n in (1_500, 15_000, 150_000)
+        for mode, kind, fail in (
+            ("inmemory", "csv", False),
+            ("inmemory", "parquet", False),
+            ("dask", "parquet", n == 150_000),
+        )
+    ]
     fig = plot_scaling(rows)
     top, bottom = fig.axes
     labels = [line.get_label() for line in top.lines]

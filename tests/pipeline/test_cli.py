@@ -3,6 +3,7 @@
 Each broken-input case writes its own small file; file-level problems must stop the run with exit
 status 2 and one line on stderr (no traceback), trial-level problems must mark just that trial invalid.
 """
+
 from __future__ import annotations
 
 import json
@@ -16,28 +17,54 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from skilllib.prototypes import _kmeans as pt
-from skilllib.pipeline import main
 from skilllib.cohort import CohortModel, generate_cohort
-from skilllib.recordings import read_recordings, write_recordings
 from skilllib.features import segment, select, trial_features
+from skilllib.pipeline import main
+from skilllib.prototypes import _kmeans as pt
+from skilllib.recordings import read_recordings, write_recordings
 from skilllib.smoothness import SPARC_PARAMS, sparc_spectrum
 
 ROOT = Path(__file__).resolve().parents[2]
+
+
 def _readme_keys() -> set[str]:
     """The top-level keys of results.json as README's schema table names them (first column, in backticks)."""
     text = (ROOT / "README.md").read_text()
-    table = text[text.index("### results.json"):].split("\n## ")[0]
+    table = text[text.index("### results.json") :].split("\n## ")[0]
     rows = [line.split("|")[1] for line in table.splitlines() if line.startswith("| `")]
     return {key for cell in rows for key in re.findall(r"`([a-z_]+)`", cell)}
 
 
 README_KEYS = _readme_keys()
-FIGURES = ("features", "trials_by_participant", "participant_features", "sparc_vs_length", "silhouette_sweep",
-           "silhouettes_k", "clusters_pv_sparc", "prototype_speed_profiles", "joint_velocities", "frame_mapping",
-           "joint_accelerations", "executed_speed", "time_scales")
-TRIAL_KEYS = {"participant", "trial", "status", "reason", "pv", "contact_speed", "duration", "sparc",
-              "sparc_band_end_hz", "sparc_capped", "ldlj", "resampled"}
+FIGURES = (
+    "features",
+    "trials_by_participant",
+    "participant_features",
+    "sparc_vs_length",
+    "silhouette_sweep",
+    "silhouettes_k",
+    "clusters_pv_sparc",
+    "prototype_speed_profiles",
+    "joint_velocities",
+    "frame_mapping",
+    "joint_accelerations",
+    "executed_speed",
+    "time_scales",
+)
+TRIAL_KEYS = {
+    "participant",
+    "trial",
+    "status",
+    "reason",
+    "pv",
+    "contact_speed",
+    "duration",
+    "sparc",
+    "sparc_band_end_hz",
+    "sparc_capped",
+    "ldlj",
+    "resampled",
+}
 
 
 @pytest.fixture(scope="module")
@@ -71,6 +98,7 @@ def _one_line_error(err: str, *needles: str) -> None:
 
 
 # --- a good small file at another sampling rate ------------------------------------------------------
+
 
 def test_small_file_at_100_hz(tmp_path, capsys, small_frame):
     data = _write(small_frame, tmp_path / "rec.csv")
@@ -184,6 +212,7 @@ def test_the_silhouette_sweep_reports_progress(small_frame):
 
 # --- file-level problems: exit 2, one line naming the problem ----------------------------------------
 
+
 def test_missing_file(tmp_path, capsys):
     code, _, err = _run(capsys, "--data", str(tmp_path / "nope.csv"), "--out", str(tmp_path / "o"))
     assert code == 2
@@ -251,8 +280,9 @@ def test_milliseconds_are_recognised(tmp_path, capsys, small_frame):
 
 def test_participants_at_different_rates_stop_the_run(tmp_path, capsys, small_frame):
     other = generate_cohort(8, CohortModel(n_participants=2, n_trials=12, fs=120.0)).frame
-    data = _write(pd.concat([small_frame, other.assign(participant="x" + other["participant"])]),
-                  tmp_path / "mixed.csv")
+    data = _write(
+        pd.concat([small_frame, other.assign(participant="x" + other["participant"])]), tmp_path / "mixed.csv"
+    )
     code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"))
     assert code == 2
     _one_line_error(err, "mixed.csv", "mixed sampling rates", "100 Hz", "120 Hz")
@@ -282,11 +312,16 @@ def test_bad_options_are_one_line(tmp_path, capsys, small_frame):
 
 # --- the SPARC parameters: used as given, reported as used -----------------------------------------
 
-@pytest.mark.parametrize("opts, params", [
-    ([], dict(SPARC_PARAMS)),
-    (["--fc", "10"], {**SPARC_PARAMS, "fc": 10.0}),
-    (["--fc", "15", "--amp-th", "0.1", "--padlevel", "3"], {"fc": 15.0, "amp_th": 0.1, "padlevel": 3}),
-], ids=["default", "fc10", "all-three"])
+
+@pytest.mark.parametrize(
+    "opts, params",
+    [
+        ([], dict(SPARC_PARAMS)),
+        (["--fc", "10"], {**SPARC_PARAMS, "fc": 10.0}),
+        (["--fc", "15", "--amp-th", "0.1", "--padlevel", "3"], {"fc": 15.0, "amp_th": 0.1, "padlevel": 3}),
+    ],
+    ids=["default", "fc10", "all-three"],
+)
 def test_sparc_options_are_used_for_every_trial_and_reported(tmp_path, capsys, small_frame, opts, params):
     """Each valid trial's SPARC, band end and capped flag equal sparc_spectrum of its own segment with the
     parameters the run reports; the capped count in messages is that of the selected trials."""
@@ -329,35 +364,57 @@ def test_sparc_settings_change_the_values_that_depend_on_them_only(tmp_path, cap
 @pytest.mark.slow
 def test_sensitivity_compares_with_the_runs_own_setting(tmp_path, capsys, small_frame):
     data = _write(small_frame, tmp_path / "rec.csv")
-    code, out, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"),
-                          "--k", "3", "--sensitivity", "fc=10", "fc=20,amp_th=0.1")
+    code, out, err = _run(
+        capsys,
+        "--data",
+        str(data),
+        "--out",
+        str(tmp_path / "o"),
+        "--k",
+        "3",
+        "--sensitivity",
+        "fc=10",
+        "fc=20,amp_th=0.1",
+    )
     assert code == 0, err
     res = _results(tmp_path / "o")
     sens = res["sparc_sensitivity"]
     assert sens["k"] == res["k"] == 3
     assert [s["params"] for s in sens["settings"]] == [
-        {"fc": 20.0, "amp_th": 0.05, "padlevel": 4}, {"fc": 10.0, "amp_th": 0.05, "padlevel": 4},
-        {"fc": 20.0, "amp_th": 0.1, "padlevel": 4}]
+        {"fc": 20.0, "amp_th": 0.05, "padlevel": 4},
+        {"fc": 10.0, "amp_th": 0.05, "padlevel": 4},
+        {"fc": 20.0, "amp_th": 0.1, "padlevel": 4},
+    ]
     ref = sens["settings"][0]
     assert [(p["participant"], p["trial"]) for p in ref["prototypes"]] == [
-        (c["prototype"]["participant"], c["prototype"]["trial"]) for c in res["clusters"]]  # the run's own fit
+        (c["prototype"]["participant"], c["prototype"]["trial"]) for c in res["clusters"]
+    ]  # the run's own fit
     selected = [t for t in res["trials"] if t["status"] == "selected"]
     rec = read_recordings(data)
     for entry in sens["settings"][1:]:
-        changed = sum(abs(t["sparc"] - sparc_spectrum(segment(rec, t["participant"], t["trial"]).speed,
-                                                      rec.fs, **entry["params"]).sparc) > 1e-9 for t in selected)
+        changed = sum(
+            abs(
+                t["sparc"]
+                - sparc_spectrum(segment(rec, t["participant"], t["trial"]).speed, rec.fs, **entry["params"]).sparc
+            )
+            > 1e-9
+            for t in selected
+        )
         assert entry["vs_reference"]["n_sparc_changed"] == changed
     assert "SPARC sensitivity, against this run's fc 20 Hz" in out and "fc 10 Hz, amp_th 0.05, padlevel 4:" in out
     assert {"sparc_sensitivity.png", "sparc_sensitivity.svg"} <= set(res["figures"])
 
 
-@pytest.mark.parametrize("opts, words", [
-    (["--fc", "60"], ("Nyquist", "50 Hz")),
-    (["--sensitivity", "fc=80"], ("Nyquist", "fc = 80")),
-    (["--fc", "0"], ("fc must",)),
-    (["--amp-th", "1.5"], ("amp_th", "between 0 and 1")),
-    (["--padlevel", "-1"], ("padlevel", "0 to 10")),
-])
+@pytest.mark.parametrize(
+    "opts, words",
+    [
+        (["--fc", "60"], ("Nyquist", "50 Hz")),
+        (["--sensitivity", "fc=80"], ("Nyquist", "fc = 80")),
+        (["--fc", "0"], ("fc must",)),
+        (["--amp-th", "1.5"], ("amp_th", "between 0 and 1")),
+        (["--padlevel", "-1"], ("padlevel", "0 to 10")),
+    ],
+)
 def test_bad_sparc_options_are_one_line(tmp_path, capsys, small_frame, opts, words):
     data = _write(small_frame, tmp_path / "rec.csv")
     code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"), *opts)
@@ -376,6 +433,7 @@ def test_bad_sensitivity_settings_are_option_errors(tmp_path, capsys):
 
 # --- trial-level problems: that trial invalid with a reason, the rest processed ----------------------
 
+
 def _rows(df: pd.DataFrame, p, tr) -> pd.Index:
     return df.index[(df["participant"] == p) & (df["trial"] == tr)]
 
@@ -386,19 +444,19 @@ def test_broken_trials_are_marked_and_the_rest_goes_on(tmp_path, capsys, small_f
     keys = list(keys)
     (p_back, t_back), (p_nan, t_nan), (p_noc, t_noc), (p_few, t_few), (p_rep, t_rep) = keys[:5]
     i = _rows(df, p_back, t_back)
-    df.loc[i[20], "t"] = df.loc[i[18], "t"]                         # time goes backwards
-    df.loc[_rows(df, p_nan, t_nan)[30], "x"] = np.nan               # NaN position (empty cell)
-    df.loc[_rows(df, p_noc, t_noc), "contact"] = 0                  # never touches the box
+    df.loc[i[20], "t"] = df.loc[i[18], "t"]  # time goes backwards
+    df.loc[_rows(df, p_nan, t_nan)[30], "x"] = np.nan  # NaN position (empty cell)
+    df.loc[_rows(df, p_noc, t_noc), "contact"] = 0  # never touches the box
     few = _rows(df, p_few, t_few)
-    df = df.drop(few[3:])                                           # only 3 samples left
+    df = df.drop(few[3:])  # only 3 samples left
     i = _rows(df, p_rep, t_rep)
-    df.loc[i[15], "t"] = df.loc[i[14], "t"]                         # a repeated time stamp
+    df.loc[i[15], "t"] = df.loc[i[14], "t"]  # a repeated time stamp
     (p_inf, t_inf), (p_non, t_non), (p_irr, t_irr), (p_off, t_off) = keys[5:9]
-    df.loc[_rows(df, p_inf, t_inf)[25], "z"] = np.inf                # infinite position
-    i = _rows(df, p_non, t_non)                                     # no onset: at rest until contact
+    df.loc[_rows(df, p_inf, t_inf)[25], "z"] = np.inf  # infinite position
+    i = _rows(df, p_non, t_non)  # no onset: at rest until contact
     c = int(np.flatnonzero(df.loc[i, "contact"].to_numpy())[0])
     df.loc[i[:c], ["x", "y", "z"]] = df.loc[i[0], ["x", "y", "z"]].to_numpy(dtype=float)
-    df = df.drop(_rows(df, p_irr, t_irr)[12:16])                   # four samples missing in a row: a gap
+    df = df.drop(_rows(df, p_irr, t_irr)[12:16])  # four samples missing in a row: a gap
     i = _rows(df, p_off, t_off)
     df.loc[i, "t"] = df.loc[i[0], "t"] + 2 * (df.loc[i, "t"] - df.loc[i[0], "t"])  # this trial at 50 Hz
     # rows of one trial not contiguous: move the last trial's first row to the top of the file
@@ -412,10 +470,18 @@ def test_broken_trials_are_marked_and_the_rest_goes_on(tmp_path, capsys, small_f
     res = _results(tmp_path / "o")
     assert len(res["trials"]) == len(keys), "every input trial appears in results.json"
     by_key = {(t["participant"], t["trial"]): t for t in res["trials"]}
-    expected = {(p_back, t_back): "backwards", (p_nan, t_nan): "nan", (p_noc, t_noc): "contact",
-                (p_few, t_few): "samples", (p_rep, t_rep): "repeat", (p_last, t_last): "contiguous",
-                (p_inf, t_inf): "infinite", (p_non, t_non): "no onset", (p_irr, t_irr): "gap in the time stamps",
-                (p_off, t_off): "50.0 hz"}
+    expected = {
+        (p_back, t_back): "backwards",
+        (p_nan, t_nan): "nan",
+        (p_noc, t_noc): "contact",
+        (p_few, t_few): "samples",
+        (p_rep, t_rep): "repeat",
+        (p_last, t_last): "contiguous",
+        (p_inf, t_inf): "infinite",
+        (p_non, t_non): "no onset",
+        (p_irr, t_irr): "gap in the time stamps",
+        (p_off, t_off): "50.0 hz",
+    }
     for key, word in expected.items():
         t = by_key[(str(key[0]), str(key[1]))]
         assert t["status"] == "invalid", (key, t)
@@ -432,15 +498,28 @@ def _plain(v):
 
 # --- the default run on the committed cohort, with figures --------------------------------------------
 
+
 @pytest.mark.slow
 def test_default_run_writes_results_and_figures(tmp_path):
     out = tmp_path / "cohort"
-    proc = subprocess.run([sys.executable, "-m", "skilllib", "run", "--out", str(out), "--quiet"],
-                          check=False, capture_output=True, text=True, cwd=tmp_path, timeout=600)
+    proc = subprocess.run(
+        [sys.executable, "-m", "skilllib", "run", "--out", str(out), "--quiet"],
+        check=False,
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        timeout=600,
+    )
     assert proc.returncode == 0, proc.stderr
     res = _results(out)
-    assert res["dataset"] == {"path": "skilllib/datasets/cohort.csv", "synthetic": True, "n_trials": 1500,
-                              "n_participants": 10, "fs": 60.0, "n_resampled": 0}
+    assert res["dataset"] == {
+        "path": "skilllib/datasets/cohort.csv",
+        "synthetic": True,
+        "n_trials": 1500,
+        "n_participants": 10,
+        "fs": 60.0,
+        "n_resampled": 0,
+    }
     svgs = [(out / f).read_text() for f in res["figures"] if f.endswith(".svg")]
     assert all("Synthetic data: the book" in svg for svg in svgs), "every figure of the cohort says it is synthetic"
     assert res["filter"]["cutoff_hz"] is None and res["filter"]["chosen_by"] == "auto: not needed"

@@ -1,6 +1,7 @@
 """The command line as Unix tools behave (issue 12): a light start-up, progress only on a terminal, an output
 folder replaced as a whole (never mixed, never left half-written, never shared by two runs), bad options as
 exit 2, Ctrl-C as exit 130 at any point, a closed stdout ending quietly."""
+
 from __future__ import annotations
 
 import json
@@ -15,13 +16,12 @@ import pandas as pd
 import pytest
 
 import skilllib
+from skilllib.cohort import CohortModel, generate_cohort
+from skilllib.features import trial_features
+from skilllib.pipeline import RUN_FILES, OutputError, main, output_folder
 from skilllib.pipeline import _run as pipeline
 from skilllib.prototypes import _kmeans as pt
-from skilllib.pipeline import main
-from skilllib.cohort import CohortModel, generate_cohort
 from skilllib.recordings import write_recordings
-from skilllib.features import trial_features
-from skilllib.pipeline import RUN_FILES, OutputError, output_folder
 
 HEAVY = ("pandas", "sklearn", "roboticstoolbox", "matplotlib", "scipy")
 
@@ -53,15 +53,18 @@ def _python(*args: str, **kw) -> subprocess.CompletedProcess:
 
 # --- start-up ----------------------------------------------------------------------------------------
 
+
 @pytest.mark.slow  # a subprocess: left out of mutation testing (it would not see the mutant)
 @pytest.mark.parametrize("argv", [["--help"], ["run", "--help"], ["--version"]])
 def test_help_and_version_import_none_of_the_heavy_libraries(argv):
     """What makes --help take seconds is importing pandas, scikit-learn, roboticstoolbox, matplotlib or
     scipy; none of them may be imported for --help or --version (the time itself is a benchmark,
     benchmarks/bench_cli.py, not a test)."""
-    code = ("import sys, runpy; sys.argv = ['skilllib', *sys.argv[1:]]\n"
-            "try:\n    runpy.run_module('skilllib', run_name='__main__')\nexcept SystemExit:\n    pass\n"
-            f"print('HEAVY', sorted(m for m in {HEAVY!r} if m in sys.modules))")
+    code = (
+        "import sys, runpy; sys.argv = ['skilllib', *sys.argv[1:]]\n"
+        "try:\n    runpy.run_module('skilllib', run_name='__main__')\nexcept SystemExit:\n    pass\n"
+        f"print('HEAVY', sorted(m for m in {HEAVY!r} if m in sys.modules))"
+    )
     proc = _python("-c", code, *argv)
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.strip().splitlines()[-1] == "HEAVY []"
@@ -76,6 +79,7 @@ def test_the_cli_default_k_is_the_papers():
 
 
 # --- progress bars only on a terminal ----------------------------------------------------------------
+
 
 @pytest.mark.slow  # a subprocess: left out of mutation testing (it would not see the mutant)
 def test_no_progress_bars_when_stderr_is_not_a_terminal(tmp_path, small_file):
@@ -95,9 +99,23 @@ def test_progress_bars_on_a_terminal(tmp_path, small_file):
     def run_on_pty(*extra: str) -> str:
         leader, follower = pty.openpty()
         fcntl.ioctl(follower, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 100, 0, 0))  # a 100-column terminal
-        proc = subprocess.Popen([sys.executable, "-m", "skilllib", "run", "--data", str(small_file), "--out",
-                                 str(tmp_path / f"o{len(extra)}"), "--no-figures", *extra],
-                                stdout=subprocess.DEVNULL, stderr=follower, close_fds=True)
+        proc = subprocess.Popen(
+            [
+                sys.executable,
+                "-m",
+                "skilllib",
+                "run",
+                "--data",
+                str(small_file),
+                "--out",
+                str(tmp_path / f"o{len(extra)}"),
+                "--no-figures",
+                *extra,
+            ],
+            stdout=subprocess.DEVNULL,
+            stderr=follower,
+            close_fds=True,
+        )
         os.close(follower)
         chunks = []
         while True:
@@ -118,6 +136,7 @@ def test_progress_bars_on_a_terminal(tmp_path, small_file):
 
 
 # --- the output folder -------------------------------------------------------------------------------
+
 
 def test_a_reused_out_keeps_no_figure_of_the_earlier_run(tmp_path, capsys, small_file):
     out = tmp_path / "o"
@@ -187,6 +206,7 @@ def test_an_out_that_is_a_file_is_an_option_error(tmp_path, capsys, small_file):
 
 # --- options, interruption, closed stdout ------------------------------------------------------------
 
+
 @pytest.mark.parametrize("seed", ["-1", "4294967296", "1.5"])
 def test_a_bad_seed_is_an_option_error(tmp_path, capsys, small_file, seed):
     with pytest.raises(SystemExit) as e:
@@ -196,8 +216,12 @@ def test_a_bad_seed_is_an_option_error(tmp_path, capsys, small_file, seed):
 
 
 def test_the_largest_seed_is_accepted(tmp_path, capsys, small_file):
-    assert _run(capsys, "--data", str(small_file), "--out", str(tmp_path / "o"), "--no-figures",
-                "--seed", str(2**32 - 1))[0] == DONE
+    assert (
+        _run(capsys, "--data", str(small_file), "--out", str(tmp_path / "o"), "--no-figures", "--seed", str(2**32 - 1))[
+            0
+        ]
+        == DONE
+    )
 
 
 @pytest.mark.parametrize("where", ["start-up", "run"])
@@ -207,8 +231,9 @@ def test_ctrl_c_at_any_point_is_exit_130_with_one_line(tmp_path, capsys, small_f
     def interrupt(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(cli if where == "start-up" else pipeline, "_parser" if where == "start-up" else "compute",
-                        interrupt)
+    monkeypatch.setattr(
+        cli if where == "start-up" else pipeline, "_parser" if where == "start-up" else "compute", interrupt
+    )
     code = main(["run", "--data", str(small_file), "--out", str(tmp_path / "o")])
     err = capsys.readouterr().err
     assert code == 130 and err == "error: interrupted\n"
@@ -220,8 +245,12 @@ def test_sigint_to_a_running_command_is_exit_130_without_a_traceback(tmp_path, s
     """SIGINT once the command runs its own code (pandas is imported inside main(): wait until the process
     has mapped it, Linux /proc): exit 130 and one line. The interpreter's own start-up, before skilllib's
     code, is Python's (a few tens of ms)."""
-    proc = subprocess.Popen([sys.executable, "-m", "skilllib", "run", "--data", str(small_file), "--out",
-                             str(tmp_path / "o")], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "skilllib", "run", "--data", str(small_file), "--out", str(tmp_path / "o")],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     maps = Path(f"/proc/{proc.pid}/maps")
     deadline = time.monotonic() + 120
     while proc.poll() is None and time.monotonic() < deadline:
@@ -242,8 +271,21 @@ def test_sigint_to_a_running_command_is_exit_130_without_a_traceback(tmp_path, s
 @pytest.mark.slow  # a subprocess: left out of mutation testing (it would not see the mutant)
 def test_a_closed_stdout_ends_quietly(tmp_path, small_file):
     """`skilllib run ... | head -0`: the summary cannot be written; no traceback, exit 141 (as SIGPIPE)."""
-    proc = subprocess.Popen([sys.executable, "-m", "skilllib", "run", "--data", str(small_file), "--out",
-                             str(tmp_path / "o"), "--no-figures"], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "skilllib",
+            "run",
+            "--data",
+            str(small_file),
+            "--out",
+            str(tmp_path / "o"),
+            "--no-figures",
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
     proc.stdout.close()
     err = proc.stderr.read().decode()
     assert proc.wait(timeout=600) == 141 and err == ""
@@ -255,5 +297,7 @@ def test_a_dataframe_run_writes_text_ids(tmp_path, small_file):
     first = frame.trial.isin(frame.trial.unique()[:3])
     frame = frame.assign(participant=frame.participant.where(~first, "01"))  # "01" beside "1": two participants
     res = pipeline.run(frame, tmp_path / "o", write_figures=False).results
-    assert [t["participant"] for t in res["trials"]] == frame.drop_duplicates(["participant", "trial"]).participant.tolist()
+    assert [t["participant"] for t in res["trials"]] == frame.drop_duplicates(
+        ["participant", "trial"]
+    ).participant.tolist()
     assert pd.DataFrame(res["trials"]).participant.nunique() == 2

@@ -8,6 +8,7 @@ written) and the costliest figure functions by stubs that record their arguments
 what _write_figures does with the figures, which keeps it fast; the figures themselves are drawn and
 written by the slow figure tests and tests/test_cli.py.
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -20,24 +21,31 @@ matplotlib.use("Agg")
 
 import matplotlib.colors as mcolors  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 import pytest  # noqa: E402
+from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
 
 from skilllib import figures as fg
-from skilllib.pipeline import _run as pipeline, _summary as summary
-from skilllib.recordings import MAX_RANGE_M
 from skilllib.cohort import CohortModel, generate_cohort
 from skilllib.features import NO_FILTER, Lowpass
+from skilllib.pipeline import _run as pipeline
+from skilllib.pipeline import _summary as summary
+from skilllib.recordings import MAX_RANGE_M
 from skilllib.robot import get_robot
 
 FS = 60.0
 AMP_TH = 0.1  #: not the default 0.05: the figures must show the run's own threshold
 CUTOFF_HZ = 8.0
 DATA_FIGURES = ["features", "trials_by_participant", "participant_features", "sparc_vs_length"]
-CLUSTER_FIGURES = ["silhouette_sweep", "silhouettes_k", "clusters_pv_sparc", "prototype_speed_profiles",
-                   "joint_velocities", "frame_mapping"]
+CLUSTER_FIGURES = [
+    "silhouette_sweep",
+    "silhouettes_k",
+    "clusters_pv_sparc",
+    "prototype_speed_profiles",
+    "joint_velocities",
+    "frame_mapping",
+]
 ROBOT = "simple6"
 
 
@@ -50,8 +58,13 @@ def small_run() -> pipeline.PipelineRun:
 
 
 #: Figure functions replaced by stubs (each ~1 s to draw); their (name, args) are recorded.
-STUBBED = ("plot_trials_by_participant", "plot_participant_features", "plot_joint_velocities",
-           "plot_frame_mapping", "plot_sparc_sensitivity")
+STUBBED = (
+    "plot_trials_by_participant",
+    "plot_participant_features",
+    "plot_joint_velocities",
+    "plot_frame_mapping",
+    "plot_sparc_sensitivity",
+)
 STUB_DYNAMICS = ("dynamics_a", "dynamics_b", "dynamics_c")  #: names the dynamics_figures stub returns
 SENSITIVITY = object()  #: stands for a SparcSensitivity: only passed on to its figure
 
@@ -69,6 +82,7 @@ def _draw(run_: pipeline.PipelineRun, mp: pytest.MonkeyPatch, synthetic: bool) -
         def draw(*args):
             calls.append((fname, args))
             return plt.figure()
+
         return draw
 
     def dynamics(assessments):
@@ -194,6 +208,7 @@ def test_without_valid_trials_no_data_figure_is_drawn(small_run):
 
 # --- filter_message ------------------------------------------------------------------------------------
 
+
 def test_filter_message_counts_bands_strictly_above_the_cutoff():
     """'SPARC's band reaches above that cut-off in N of M': bands ending exactly at the cut-off do not
     reach above it. Catches ``>=`` and a wrong column."""
@@ -214,18 +229,24 @@ def test_a_filtered_run_says_so_in_its_messages(small_run):
 
 # --- summary: the lines `python -m skilllib run` prints -------------------------------------------------
 
-@pytest.mark.parametrize("reason, kind", [
-    ("contact speed 0.812 m/s above 0.7 m/s", "contact speed above 0.7 m/s"),
-    ("contact speed 0.125 m/s below 0.3 m/s", "contact speed below 0.3 m/s"),
-    ("sampled at 100 Hz, not at the file's 60 Hz", "sampled at another rate than the file"),
-    ("positions span 3.2 m (more than the device)", f"positions span more than {MAX_RANGE_M:g} m"),
-    ("in contact from sample 2: no approach recorded before contact",
-     "in contact from the start: no approach recorded"),
-    ("too short: 3 samples from onset to contact (need at least 5)", "too short"),
-    ("time goes backwards at line 12 (t = 0.5 after 0.6)", "time goes backwards"),
-    ("x is missing (NaN) at row 17", "x is missing (NaN)"),
-    ("only 12 samples of -1.5e-3 m", "only N samples of N m"),
-])
+
+@pytest.mark.parametrize(
+    "reason, kind",
+    [
+        ("contact speed 0.812 m/s above 0.7 m/s", "contact speed above 0.7 m/s"),
+        ("contact speed 0.125 m/s below 0.3 m/s", "contact speed below 0.3 m/s"),
+        ("sampled at 100 Hz, not at the file's 60 Hz", "sampled at another rate than the file"),
+        ("positions span 3.2 m (more than the device)", f"positions span more than {MAX_RANGE_M:g} m"),
+        (
+            "in contact from sample 2: no approach recorded before contact",
+            "in contact from the start: no approach recorded",
+        ),
+        ("too short: 3 samples from onset to contact (need at least 5)", "too short"),
+        ("time goes backwards at line 12 (t = 0.5 after 0.6)", "time goes backwards"),
+        ("x is missing (NaN) at row 17", "x is missing (NaN)"),
+        ("only 12 samples of -1.5e-3 m", "only N samples of N m"),
+    ],
+)
 def test_reason_kind_drops_what_differs_from_trial_to_trial(reason, kind):
     """Reasons that differ only in their numbers, line numbers or details after a colon count as one kind
     (the rule of each pattern of summary._REASON_KINDS and of the fallback)."""
@@ -246,8 +267,9 @@ def test_summary_counts_trials_participants_and_statuses(small_run, lines):
     """The first two lines: trials, participants and rate; selected / excluded / invalid counts (0 for
     a status no trial has)."""
     f = small_run.features
-    assert lines[0] == (f"trials read: {len(f)} from {f.participant.nunique()} participant(s) at {FS:.4g} Hz "
-                        f"(from the time stamps)")
+    assert lines[0] == (
+        f"trials read: {len(f)} from {f.participant.nunique()} participant(s) at {FS:.4g} Hz (from the time stamps)"
+    )
     n = {s: int((f.status == s).sum()) for s in ("selected", "excluded", "invalid")}
     assert lines[1] == f"selected: {n['selected']}, excluded: {n['excluded']}, invalid: {n['invalid']}"
 
@@ -256,10 +278,13 @@ def test_summary_names_the_commonest_reasons_with_their_counts(small_run):
     """Up to three commonest reason kinds per status, most common first, as 'n x kind'; none for a
     status without trials."""
     f = small_run.features.copy()
-    reasons = ["no contact: the contact flag is never 1"] * 3 + ["no onset: speed stays below 0.05 m/s"] * 2 + \
-              ["x is missing (NaN) at row 4", "y is missing (NaN) at row 9", "z is missing (NaN) at row 2"]
-    f.loc[:len(reasons) - 1, "status"] = "invalid"
-    f.loc[:len(reasons) - 1, "reason"] = reasons
+    reasons = (
+        ["no contact: the contact flag is never 1"] * 3
+        + ["no onset: speed stays below 0.05 m/s"] * 2
+        + ["x is missing (NaN) at row 4", "y is missing (NaN) at row 9", "z is missing (NaN) at row 2"]
+    )
+    f.loc[: len(reasons) - 1, "status"] = "invalid"
+    f.loc[: len(reasons) - 1, "reason"] = reasons
     f.loc[f.status != "invalid", "status"] = "selected"
     run_ = dataclasses.replace(small_run, features=f, prototypes=None, sensitivity=None, messages=[])
     got = summary.summary_lines(run_)
@@ -277,8 +302,10 @@ def test_summary_of_the_clustering_and_each_prototype(small_run, lines):
     assert len(clusters) == fit.k
     for c, (line, tr, a) in enumerate(zip(clusters, small_run.transfers, small_run.assessments)):
         p = fit.prototypes.loc[c]
-        assert line.startswith(f"  cluster {c}: size {fit.sizes[c]}, prototype participant {p['participant']} "
-                               f"trial {p['trial']} (PV {p['pv']:.2f} m/s, SPARC {p['sparc']:.2f}); ")
+        assert line.startswith(
+            f"  cluster {c}: size {fit.sizes[c]}, prototype participant {p['participant']} "
+            f"trial {p['trial']} (PV {p['pv']:.2f} m/s, SPARC {p['sparc']:.2f}); "
+        )
         assert f"peak |qd| {np.nanmax(tr.peak_abs_qd):.2f} rad/s" in line
         d = a.dynamics
         if d.feasible:
@@ -294,7 +321,7 @@ def test_summary_of_the_clustering_and_each_prototype(small_run, lines):
 
 
 def test_summary_ends_with_every_message_as_a_note(small_run, lines):
-    assert small_run.messages and lines[-len(small_run.messages):] == [f"note: {m}" for m in small_run.messages]
+    assert small_run.messages and lines[-len(small_run.messages) :] == [f"note: {m}" for m in small_run.messages]
 
 
 def test_summary_of_an_unknown_sampling_rate(small_run):
@@ -304,14 +331,16 @@ def test_summary_of_an_unknown_sampling_rate(small_run):
 
 # --- the run's options reach every step -----------------------------------------------------------
 
+
 def test_the_prototypes_trajectory_is_filtered_as_the_trials_were(small_run):
     """The transfer gets the prototype's segment low-pass filtered at the run's cut-off, the trajectory
     its features came from. Catches the filter dropped for the prototype's segment (auto or none used)."""
     from skilllib.features import segment
+
     lowpass = small_run.features.attrs["lowpass"]
     assert lowpass.cutoff_hz == CUTOFF_HZ
     protos = small_run.prototypes.prototypes
-    for c, (t, speed) in enumerate(small_run.profiles):
+    for c, (_t, speed) in enumerate(small_run.profiles):
         p, tr = protos.at[c, "participant"], protos.at[c, "trial"]
         filtered = segment(small_run.recordings, p, tr, lowpass=lowpass)
         raw = segment(small_run.recordings, p, tr, lowpass=NO_FILTER)
@@ -329,8 +358,9 @@ def test_progress_wraps_each_stage_with_its_name():
         return items
 
     frame = generate_cohort(3, CohortModel(n_participants=3, n_trials=8, fs=FS)).frame
-    run_ = pipeline.run(frame, None, k=2, amp_th=AMP_TH, lowpass=CUTOFF_HZ, robot=ROBOT, progress=progress,
-                        write_figures=False)
+    run_ = pipeline.run(
+        frame, None, k=2, amp_th=AMP_TH, lowpass=CUTOFF_HZ, robot=ROBOT, progress=progress, write_figures=False
+    )
     names = [d for d, _ in seen]
     assert names[0] == "features" and "silhouette" in names and ("transfer", 2) in seen
     assert names.index("silhouette") < names.index("transfer")
@@ -358,11 +388,14 @@ def started_late() -> pd.DataFrame:
     return frame[g.cumcount() >= g["t"].transform("size") // 2]
 
 
-@pytest.mark.parametrize("lowpass, hint", [
-    ("none", "then try a low-pass filter (--lowpass auto or HZ) (chapter 5)"),
-    (CUTOFF_HZ, "then try a stronger low-pass filter (--lowpass HZ) (chapter 5)"),
-    ("auto", "then try a low-pass filter (--lowpass HZ) (chapter 5)"),
-])
+@pytest.mark.parametrize(
+    "lowpass, hint",
+    [
+        ("none", "then try a low-pass filter (--lowpass auto or HZ) (chapter 5)"),
+        (CUTOFF_HZ, "then try a stronger low-pass filter (--lowpass HZ) (chapter 5)"),
+        ("auto", "then try a low-pass filter (--lowpass HZ) (chapter 5)"),
+    ],
+)
 def test_many_trials_without_rest_get_the_hint_that_fits_the_filter(started_late, lowpass, hint):
     """More than NO_REST_FRACTION of the trials without rest: the message counts them and suggests the
     next step for the filter in use (none: a filter; auto that did not filter: a cut-off; a cut-off: a

@@ -14,6 +14,7 @@ transfer gained dynamics and execution (issue 14), and 50 to 60 s on a busy one 
 sweeps (0.3 s each; run() always sweeps k = 2..16), one run with figures (5 s), and the direct
 assessments the transfer block is checked against.
 """
+
 from __future__ import annotations
 
 import copy
@@ -29,30 +30,41 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from skilllib.pipeline import _run as pipeline
-from skilllib.prototypes import _kmeans as pt
-from skilllib.pipeline import main
 from skilllib.cohort import CohortModel, generate_cohort
-from skilllib.recordings import read_recordings, write_recordings
-from skilllib.robot import assess_one, resolve_limits
 from skilllib.features import CONTACT_WINDOW, segment, select, trial_features
-from skilllib.robot import dynamic_limits, get_robot
+from skilllib.pipeline import _run as pipeline
+from skilllib.pipeline import main
+from skilllib.prototypes import _kmeans as pt
 from skilllib.prototypes import sparc_sensitivity
+from skilllib.recordings import read_recordings, write_recordings
+from skilllib.robot import assess_one, dynamic_limits, get_robot, resolve_limits, transfer
 from skilllib.smoothness import DEFAULT_AMP_TH, DEFAULT_FC, DEFAULT_PADLEVEL, SPARC_PARAMS
-from skilllib.robot import transfer
 
 REL = 1e-12  # floats that pass through JSON (repr round-trips exactly; this only allows for rounding)
 FEATURES = ("pv", "contact_speed", "duration", "sparc", "sparc_band_end_hz", "ldlj")
 TRIAL_KEYS = {"participant", "trial", "status", "reason", *FEATURES, "sparc_capped", "resampled"}
-FIGURES = ("features", "trials_by_participant", "participant_features", "sparc_vs_length", "silhouette_sweep",
-           "silhouettes_k", "clusters_pv_sparc", "prototype_speed_profiles", "joint_velocities", "frame_mapping",
-           "joint_accelerations", "executed_speed", "time_scales")
+FIGURES = (
+    "features",
+    "trials_by_participant",
+    "participant_features",
+    "sparc_vs_length",
+    "silhouette_sweep",
+    "silhouettes_k",
+    "clusters_pv_sparc",
+    "prototype_speed_profiles",
+    "joint_velocities",
+    "frame_mapping",
+    "joint_accelerations",
+    "executed_speed",
+    "time_scales",
+)
 #: The base file: 5 participants x 16 trials at 60 Hz; its 27 selected trials make k = 6 silhouette-valid
 #: without shrinking the sweep, and K-means with random_state 1 partitions them differently from 0.
 BASE_SEED, BASE_MODEL = 9, CohortModel(n_participants=5, n_trials=16, fs=60.0)
 
 
 # --- helpers -----------------------------------------------------------------------------------------
+
 
 def _reject_constant(name: str) -> Any:
     raise AssertionError(f"results.json contains {name}: not JSON, README promises null")
@@ -131,8 +143,9 @@ class Direct:
     sweep: pt.SilhouetteSweep | None
 
 
-def _direct(rec, params: dict | None = None, scaling: str = "raw", random_state: int = 0,
-            feats: pd.DataFrame | None = None) -> Direct:
+def _direct(
+    rec, params: dict | None = None, scaling: str = "raw", random_state: int = 0, feats: pd.DataFrame | None = None
+) -> Direct:
     params = {**SPARC_PARAMS, **(params or {})}
     feats = trial_features(rec, sparc_params=params) if feats is None else feats
     sel = select(feats)
@@ -167,6 +180,7 @@ def _start_in_motion(df: pd.DataFrame, key: tuple, t_onset: float) -> pd.DataFra
 
 
 # --- the checks: results.json against the direct calls ----------------------------------------------
+
 
 def check_trials(res: dict, d: Direct) -> None:
     """Every trial's ids, status, reason and features as trial_features gives them; null, never "" or NaN,
@@ -232,8 +246,15 @@ def check_clustering(res: dict, d: Direct, k: int, scaling: str = "raw", random_
     return fit
 
 
-def check_transfer(res: dict, d: Direct, fit: pt.PrototypeResult, robot: str = "simple6",
-                   qd_limits: Any = None, qdd_limits: Any = None, tau_limits: Any = None) -> None:
+def check_transfer(
+    res: dict,
+    d: Direct,
+    fit: pt.PrototypeResult,
+    robot: str = "simple6",
+    qd_limits: Any = None,
+    qdd_limits: Any = None,
+    tau_limits: Any = None,
+) -> None:
     """The transfer block: the robot, its q0, the limits, and per cluster (in cluster order) the summary of
     transfer() on that cluster's own prototype segment, assessed (dynamics, every limit, execution) by
     assess_one with the limits and SPARC parameters of the run."""
@@ -254,8 +275,15 @@ def check_transfer(res: dict, d: Direct, fit: pt.PrototypeResult, robot: str = "
     assert [p["cluster"] for p in tr["prototypes"]] == list(range(fit.k))
     for c, entry in enumerate(tr["prototypes"]):
         seg = segment(d.rec, _py(fit.prototypes.at[c, "participant"]), _py(fit.prototypes.at[c, "trial"]))
-        r = transfer(setup.robot, seg.t - seg.t[0], seg.pos, seg.vel, q0=setup.q0,
-                     qd_limits=np.asarray(tr["qd_limits"]), cluster=c)
+        r = transfer(
+            setup.robot,
+            seg.t - seg.t[0],
+            seg.pos,
+            seg.vel,
+            q0=setup.q0,
+            qd_limits=np.asarray(tr["qd_limits"]),
+            cluster=c,
+        )
         want = assess_one(setup.robot, r, limits, sparc_params=d.params).summary()
         assert len(entry["peak_abs_qd"]) == len(entry["peak_abs_qdd"]) == setup.robot.n
         _same(entry, _json(want), f"transfer.prototypes[{c}]")
@@ -292,14 +320,24 @@ def check_messages(res: dict, d: Direct, k_requested: int, **extra: int) -> None
     if n_sel:
         n_capped = int(d.sel["sparc_capped"].sum())
         note = next(m for m in msgs if MESSAGE_KINDS["capped"](m))
-        assert note.startswith(f"{n_capped} of {n_sel} selected trials have their SPARC band ended by "
-                               f"fc = {d.params['fc']:g} Hz rather than by the amplitude threshold "
-                               f"{d.params['amp_th']:g}"), note
+        assert note.startswith(
+            f"{n_capped} of {n_sel} selected trials have their SPARC band ended by "
+            f"fc = {d.params['fc']:g} Hz rather than by the amplitude threshold "
+            f"{d.params['amp_th']:g}"
+        ), note
 
 
-def check_all(res: dict, d: Direct, k_requested: int = pt.DEFAULT_K, scaling: str = "raw", random_state: int = 0,
-              robot: str = "simple6", qd_limits: Any = None, qdd_limits: Any = None,
-              tau_limits: Any = None) -> pt.PrototypeResult:
+def check_all(
+    res: dict,
+    d: Direct,
+    k_requested: int = pt.DEFAULT_K,
+    scaling: str = "raw",
+    random_state: int = 0,
+    robot: str = "simple6",
+    qd_limits: Any = None,
+    qdd_limits: Any = None,
+    tau_limits: Any = None,
+) -> pt.PrototypeResult:
     check_trials(res, d)
     k = min(k_requested, int(d.sweep.ks[-1]))
     fit = check_clustering(res, d, k, scaling, random_state)
@@ -309,6 +347,7 @@ def check_all(res: dict, d: Direct, k_requested: int = pt.DEFAULT_K, scaling: st
 
 
 # --- fixtures ----------------------------------------------------------------------------------------
+
 
 @pytest.fixture(scope="module")
 def cohort_frame() -> pd.DataFrame:
@@ -355,6 +394,7 @@ def direct(base_rec):
             features[p] = d.feats
             cache[(p, scaling, random_state)] = d
         return cache[(p, scaling, random_state)]
+
     return get
 
 
@@ -371,6 +411,7 @@ def runs(tmp_path_factory):
             result = pipeline.run(path, out, write_figures=False, **opts)
             cache[key] = (_load(out), result, out)
         return cache[key]
+
     return get
 
 
@@ -389,6 +430,7 @@ def eight_selected(tmp_path_factory, cohort_frame, cohort_features) -> tuple[Pat
 
 
 # --- value tests: the default run against the direct calls -------------------------------------------
+
 
 def test_the_base_file_is_what_the_tests_need(direct):
     """Preconditions of the tests below (not of the library): invalid trials of both kinds, excluded and
@@ -494,15 +536,22 @@ def _check_limits_change_only_feasibility(res: dict, base: dict, lim: np.ndarray
     and time_scales.velocity are peak / limit, time_scale (every limit) the larger of it and the
     (unchanged) acceleration stretch (Simple6 has no torques), feasible exactly when that is 1,
     the binding limit the one that asks for more; the executions are those of the direct calls."""
-    varying = ("transfer.qd_limits", "transfer.prototypes.*.feasible_velocity",
-               "transfer.prototypes.*.time_scales.velocity", "transfer.prototypes.*.binding_limit",
-               "transfer.prototypes.*.feasible", "transfer.prototypes.*.time_scale",
-               "transfer.prototypes.*.executed", "transfer.prototypes.*.executed_time_scaled")
+    varying = (
+        "transfer.qd_limits",
+        "transfer.prototypes.*.feasible_velocity",
+        "transfer.prototypes.*.time_scales.velocity",
+        "transfer.prototypes.*.binding_limit",
+        "transfer.prototypes.*.feasible",
+        "transfer.prototypes.*.time_scale",
+        "transfer.prototypes.*.executed",
+        "transfer.prototypes.*.executed_time_scaled",
+    )
     assert _without(res, *varying) == _without(base, *varying)  # peaks, det J, cond J, flags, clusters, ...
     assert res["transfer"]["qd_limits"] == [float(v) for v in lim]
     within, scale = _expected_feasibility(base, lim)
-    for i, (p, p0, s_v, ok) in enumerate(zip(res["transfer"]["prototypes"], base["transfer"]["prototypes"], scale,
-                                             within)):
+    for i, (p, p0, s_v, ok) in enumerate(
+        zip(res["transfer"]["prototypes"], base["transfer"]["prototypes"], scale, within)
+    ):
         _num(p["time_scales"]["velocity"], s_v, f"time_scales.velocity[{i}]")
         assert p["feasible_velocity"] is (not p["flags"] and ok)
         s_a = p0["time_scales"]["acceleration"]
@@ -549,10 +598,15 @@ def test_qdd_max_changes_the_acceleration_stretch_only(runs, base_file, base, di
     peaks = sorted(max(p["peak_abs_qdd"]) for p in base["transfer"]["prototypes"])
     qdd = (peaks[1] + peaks[2]) / 2
     res = runs(base_file, qdd_max=qdd)[0]
-    varying = ("transfer.qdd_limits", "transfer.prototypes.*.feasible",
-               "transfer.prototypes.*.time_scale",
-               "transfer.prototypes.*.time_scales.acceleration", "transfer.prototypes.*.binding_limit",
-               "transfer.prototypes.*.executed", "transfer.prototypes.*.executed_time_scaled")
+    varying = (
+        "transfer.qdd_limits",
+        "transfer.prototypes.*.feasible",
+        "transfer.prototypes.*.time_scale",
+        "transfer.prototypes.*.time_scales.acceleration",
+        "transfer.prototypes.*.binding_limit",
+        "transfer.prototypes.*.executed",
+        "transfer.prototypes.*.executed_time_scaled",
+    )
     assert _without(res, *varying) == _without(base, *varying)
     assert res["transfer"]["qdd_limits"] == [qdd] * 6
     for i, p in enumerate(res["transfer"]["prototypes"]):
@@ -603,8 +657,7 @@ def test_random_state_changes_the_clustering_as_fit_prototypes_does(runs, base_f
     assert res["silhouette"] != base["silhouette"] and res["clusters"] != base["clusters"]
 
 
-@pytest.mark.parametrize("params", [{"fc": 10.0}, {"amp_th": 0.1}, {"padlevel": 2}],
-                         ids=["fc", "amp_th", "padlevel"])
+@pytest.mark.parametrize("params", [{"fc": 10.0}, {"amp_th": 0.1}, {"padlevel": 2}], ids=["fc", "amp_th", "padlevel"])
 def test_sparc_parameters_reach_the_clustering_and_transfer(runs, base_file, base, direct, params):
     """The clustering and transfer use the SPARC values computed with the given parameter (test_cli checks
     the trials' SPARC). Catches: features recomputed with the defaults for the clustering, a capped note
@@ -622,11 +675,38 @@ def test_sparc_parameters_reach_the_clustering_and_transfer(runs, base_file, bas
 #: the run's k, scaling and seed; the command line must write the same results.json as run().
 UR5_LIMITS = [2.0, 2.5, 3.0, 1.5, 1.0, 3.5]
 UR5_TAU = [120.0, 120.0, 100.0, 20.0, 20.0, 20.0]
-COMBINED = {"k": 4, "robot": "ur5", "qd_max": UR5_LIMITS, "qdd_max": 4.0, "tau_max": UR5_TAU, "scaling": "standard",
-            "random_state": 1, "amp_th": 0.08, "padlevel": 3, "sensitivity": [{"fc": 10.0}]}
-COMBINED_ARGV = ["--k", "4", "--robot", "ur5", "--qd-max", *map(str, UR5_LIMITS), "--qdd-max", "4",
-                 "--tau-max", *map(str, UR5_TAU), "--scaling", "standard",
-                 "--seed", "1", "--amp-th", "0.08", "--padlevel", "3"]  # without the sensitivity (time)
+COMBINED = {
+    "k": 4,
+    "robot": "ur5",
+    "qd_max": UR5_LIMITS,
+    "qdd_max": 4.0,
+    "tau_max": UR5_TAU,
+    "scaling": "standard",
+    "random_state": 1,
+    "amp_th": 0.08,
+    "padlevel": 3,
+    "sensitivity": [{"fc": 10.0}],
+}
+COMBINED_ARGV = [
+    "--k",
+    "4",
+    "--robot",
+    "ur5",
+    "--qd-max",
+    *map(str, UR5_LIMITS),
+    "--qdd-max",
+    "4",
+    "--tau-max",
+    *map(str, UR5_TAU),
+    "--scaling",
+    "standard",
+    "--seed",
+    "1",
+    "--amp-th",
+    "0.08",
+    "--padlevel",
+    "3",
+]  # without the sensitivity (time)
 
 
 def test_sensitivity_uses_the_runs_parameters_k_scaling_and_seed(runs, base_file, base_rec, direct):
@@ -641,16 +721,28 @@ def test_sensitivity_uses_the_runs_parameters_k_scaling_and_seed(runs, base_file
     other = {**own, "fc": 10.0}
     assert [s["params"] for s in res["sparc_sensitivity"]["settings"]] == [own, other]
     d = direct(own, "standard", 1)
-    want = _json(sparc_sensitivity(base_rec, [own, other], k=4, scaling="standard", random_state=1,
-                                   reference=(d.feats, d.sweep)).to_dict())
+    want = _json(
+        sparc_sensitivity(
+            base_rec, [own, other], k=4, scaling="standard", random_state=1, reference=(d.feats, d.sweep)
+        ).to_dict()
+    )
     _same(res["sparc_sensitivity"], want, "sparc_sensitivity")
     assert res["sparc_sensitivity"]["settings"][0]["silhouette"] == res["silhouette"]  # the run's own sweep
     other_sel = select(trial_features(base_rec, sparc_params=other))
     for scaling, seed in (("raw", 1), ("standard", 0)):  # scaling or seed not handed on would be seen
         wrong = pt.fit_prototypes(other_sel, 4, scaling=scaling, random_state=seed).silhouette
         assert wrong != pytest.approx(want["settings"][1]["silhouette"]["4"], rel=1e-9)
-    check_all(res, d, k_requested=4, scaling="standard", random_state=1, robot="ur5",
-              qd_limits=UR5_LIMITS, qdd_limits=4.0, tau_limits=UR5_TAU)
+    check_all(
+        res,
+        d,
+        k_requested=4,
+        scaling="standard",
+        random_state=1,
+        robot="ur5",
+        qd_limits=UR5_LIMITS,
+        qdd_limits=4.0,
+        tau_limits=UR5_TAU,
+    )
 
 
 @pytest.mark.slow
@@ -678,13 +770,35 @@ def test_figures_are_written_only_when_asked_and_change_nothing_else(tmp_path, r
 
 # --- the command line: each flag reaches run() as its option -----------------------------------------
 
-NO_READ_OPTIONS = {"columns": None, "units": None, "up_axis": None, "marker": None, "contact_channel": None,
-                   "contact_threshold": None, "contact_height": None, "name_pattern": None}
-CLI_DEFAULTS = {"data": None, "k": pt.DEFAULT_K, "robot": "simple6", "qd_max": None, "qdd_max": None,
-                "tau_max": None, "scaling": "raw",
-                "random_state": 0, "fc": DEFAULT_FC, "amp_th": DEFAULT_AMP_TH, "padlevel": DEFAULT_PADLEVEL,
-                "sensitivity": None, "lowpass": "auto", "read_options": NO_READ_OPTIONS, "write_figures": True,
-                "workers": None, "scheduler": None}
+NO_READ_OPTIONS = {
+    "columns": None,
+    "units": None,
+    "up_axis": None,
+    "marker": None,
+    "contact_channel": None,
+    "contact_threshold": None,
+    "contact_height": None,
+    "name_pattern": None,
+}
+CLI_DEFAULTS = {
+    "data": None,
+    "k": pt.DEFAULT_K,
+    "robot": "simple6",
+    "qd_max": None,
+    "qdd_max": None,
+    "tau_max": None,
+    "scaling": "raw",
+    "random_state": 0,
+    "fc": DEFAULT_FC,
+    "amp_th": DEFAULT_AMP_TH,
+    "padlevel": DEFAULT_PADLEVEL,
+    "sensitivity": None,
+    "lowpass": "auto",
+    "read_options": NO_READ_OPTIONS,
+    "write_figures": True,
+    "workers": None,
+    "scheduler": None,
+}
 
 
 CLI_CASES = [
@@ -705,23 +819,48 @@ CLI_CASES = [
     (["--fc", "12.5"], {"fc": 12.5}),
     (["--amp-th", "0.1"], {"amp_th": 0.1}),
     (["--padlevel", "2"], {"padlevel": 2}),
-    (["--sensitivity", "fc=10", "amp_th=0.1,padlevel=3"],
-     {"sensitivity": [{"fc": 10.0}, {"amp_th": 0.1, "padlevel": 3}]}),
+    (
+        ["--sensitivity", "fc=10", "amp_th=0.1,padlevel=3"],
+        {"sensitivity": [{"fc": 10.0}, {"amp_th": 0.1, "padlevel": 3}]},
+    ),
     (["--no-figures"], {"write_figures": False}),
     (["--lowpass", "12"], {"lowpass": "12"}),
     (["--lowpass", "none"], {"lowpass": "none"}),
-    (["--units", "mm", "--up-axis=-z", "--columns", "time=t,px=x"],
-     {"read_options": {**NO_READ_OPTIONS, "units": "mm", "up_axis": "-z", "columns": {"time": "t", "px": "x"}}}),
-    (["--marker", "tip", "--contact-channel", "fz", "--contact-height", "0.01", "--name-pattern", "(?P<trial>.*)",
-      "--contact-threshold", "2.5"],
-     {"read_options": {**NO_READ_OPTIONS, "marker": "tip", "contact_channel": "fz", "contact_height": 0.01,
-                       "name_pattern": "(?P<trial>.*)", "contact_threshold": 2.5}}),
+    (
+        ["--units", "mm", "--up-axis=-z", "--columns", "time=t,px=x"],
+        {"read_options": {**NO_READ_OPTIONS, "units": "mm", "up_axis": "-z", "columns": {"time": "t", "px": "x"}}},
+    ),
+    (
+        [
+            "--marker",
+            "tip",
+            "--contact-channel",
+            "fz",
+            "--contact-height",
+            "0.01",
+            "--name-pattern",
+            "(?P<trial>.*)",
+            "--contact-threshold",
+            "2.5",
+        ],
+        {
+            "read_options": {
+                **NO_READ_OPTIONS,
+                "marker": "tip",
+                "contact_channel": "fz",
+                "contact_height": 0.01,
+                "name_pattern": "(?P<trial>.*)",
+                "contact_threshold": 2.5,
+            }
+        },
+    ),
 ]
 
 
 @pytest.mark.parametrize("argv, changed", CLI_CASES, ids=[" ".join(a) or "defaults" for a, _ in CLI_CASES])
-def test_each_flag_reaches_run_as_its_option_and_no_other(monkeypatch, capsys, tmp_path, runs, base_file,
-                                                          argv, changed):
+def test_each_flag_reaches_run_as_its_option_and_no_other(
+    monkeypatch, capsys, tmp_path, runs, base_file, argv, changed
+):
     """Catches: a flag dropped, handed to another option (e.g. --seed not reaching random_state), one
     --qd-max value passed as a list, the defaults of the CLI different from run()'s."""
     calls = []
@@ -747,8 +886,9 @@ def test_cli_writes_what_run_computes(tmp_path, capsys, runs, base_file):
     sensitivity: its results.json is run()'s with the same options and the sensitivity, less that section.
     Catches: the CLI post-processing or re-serialising the results, an option lost on the way, a
     sensitivity analysis that changes anything else of the run."""
-    code = main(["run", "--quiet", "--data", str(base_file), "--out", str(tmp_path / "o"), "--no-figures",
-                 *COMBINED_ARGV])
+    code = main(
+        ["run", "--quiet", "--data", str(base_file), "--out", str(tmp_path / "o"), "--no-figures", *COMBINED_ARGV]
+    )
     out = capsys.readouterr().out
     assert code == 0
     assert _load(tmp_path / "o") == _without(runs(base_file, **COMBINED)[0], "sparc_sensitivity")
@@ -757,6 +897,7 @@ def test_cli_writes_what_run_computes(tmp_path, capsys, runs, base_file):
 
 
 # --- thresholds at both sides of their edge -----------------------------------------------------------
+
 
 @pytest.fixture(scope="module")
 def no_rest_frame() -> tuple[pd.DataFrame, int]:
@@ -778,7 +919,7 @@ def test_no_rest_note_only_above_its_fraction(tmp_path, runs, no_rest_frame, ext
     f = trial_features(df)
     keys = list(zip(f["participant"], f["trial"]))
     assert (f["status"] != "invalid").all()
-    for key in keys[:m_edge + extra]:
+    for key in keys[: m_edge + extra]:
         t_on = float(f.loc[(f["participant"] == key[0]) & (f["trial"] == key[1]), "t_onset"].iloc[0])
         df = _start_in_motion(df, key, t_on)
     short = keys[-1]  # invalid for another reason: too few samples
@@ -804,10 +945,11 @@ def test_min_selected_is_the_edge_of_clustering(tmp_path, capsys, cohort_frame, 
     must be the fewest trials the silhouette sweep accepts. Catches: another minimum, <= for <, clusters
     from excluded trials."""
     f = cohort_features
-    keys = _keys(f, "selected")[:pipeline.MIN_SELECTED - minus] + _keys(f, "excluded")[:2]
+    keys = _keys(f, "selected")[: pipeline.MIN_SELECTED - minus] + _keys(f, "excluded")[:2]
     data = _write(_only(cohort_frame, keys), tmp_path / "few.csv")
-    code = main(["run", "--quiet", "--data", str(data), "--out", str(tmp_path / "o"), "--no-figures",
-                 "--sensitivity", "fc=10"])
+    code = main(
+        ["run", "--quiet", "--data", str(data), "--out", str(tmp_path / "o"), "--no-figures", "--sensitivity", "fc=10"]
+    )
     err = capsys.readouterr().err
     res = _load(tmp_path / "o")
     d = _direct(read_recordings(data))
@@ -816,8 +958,15 @@ def test_min_selected_is_the_edge_of_clustering(tmp_path, capsys, cohort_frame, 
     if minus:
         assert d.sweep is None  # the edge is the library's own: one fewer trial cannot be swept at all
         assert code == 3, err
-        assert not {"silhouette", "silhouette_valid_k", "k", "scaling", "clusters", "transfer",
-                    "sparc_sensitivity"} & set(res)
+        assert not {
+            "silhouette",
+            "silhouette_valid_k",
+            "k",
+            "scaling",
+            "clusters",
+            "transfer",
+            "sparc_sensitivity",
+        } & set(res)
         check_messages(res, d, pt.DEFAULT_K, **{"too few": 1, "no sensitivity": 1})
         assert any(m.startswith(f"only {pipeline.MIN_SELECTED - 1} selected trial(s)") for m in res["messages"])
     else:
@@ -842,8 +991,12 @@ def test_k_is_reduced_only_above_the_largest_k_of_the_sweep(runs, eight_selected
     assert res["k"] == largest
     notes = [m for m in res["messages"] if "needs more" in m]
     if above:
-        assert notes == [(f"k = {requested} needs more distinct selected trials than there are; "
-                          f"using k = {largest}, the largest the data allow")]
+        assert notes == [
+            (
+                f"k = {requested} needs more distinct selected trials than there are; "
+                f"using k = {largest}, the largest the data allow"
+            )
+        ]
     else:
         assert notes == []
 

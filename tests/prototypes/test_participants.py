@@ -1,4 +1,5 @@
 """skilllib.prototypes: clusters against the participants who made the trials, on hand-made labels."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -69,8 +70,13 @@ def test_nmi_is_sklearns_and_the_baseline_is_seeded(seed, n):
 
 
 def test_between_participant_share():
-    df = pd.DataFrame({"participant": PARTS, "pv": [1.0] * 4 + [2.0] * 4 + [3.0] * 3,  # constant per person
-                       "sparc": [1.0, -1.0] * 5 + [0.0]})  # every participant's mean is about 0
+    df = pd.DataFrame(
+        {
+            "participant": PARTS,
+            "pv": [1.0] * 4 + [2.0] * 4 + [3.0] * 3,  # constant per person
+            "sparc": [1.0, -1.0] * 5 + [0.0],
+        }
+    )  # every participant's mean is about 0
     share = between_participant_share(df, ["pv", "sparc"])
     assert share["pv"] == pytest.approx(1.0)
     x = df["sparc"]

@@ -1,4 +1,5 @@
 """Tests of skilllib.prototypes (silhouette sweep, K-means prototypes) and its figures."""
+
 from __future__ import annotations
 
 import json
@@ -33,8 +34,13 @@ matplotlib.use("Agg")
 CENTRES = np.array([(0.4, -1.5), (0.65, -2.4), (0.9, -1.7), (1.15, -2.8), (1.4, -2.0), (1.65, -2.6)])
 
 
-def blobs(n_per: int = 25, seed: int = 0, sd: tuple[float, float] = (0.02, 0.05),
-          centres: np.ndarray = CENTRES, shuffle: bool = True) -> tuple[pd.DataFrame, np.ndarray]:
+def blobs(
+    n_per: int = 25,
+    seed: int = 0,
+    sd: tuple[float, float] = (0.02, 0.05),
+    centres: np.ndarray = CENTRES,
+    shuffle: bool = True,
+) -> tuple[pd.DataFrame, np.ndarray]:
     """Seeded Gaussian blobs as a features-table slice (with extra columns) and the true blob of each row."""
     rng = np.random.default_rng(seed)
     truth = np.repeat(np.arange(len(centres)), n_per)
@@ -43,9 +49,19 @@ def blobs(n_per: int = 25, seed: int = 0, sd: tuple[float, float] = (0.02, 0.05)
         perm = rng.permutation(len(truth))
         x, truth = x[perm], truth[perm]
     n = len(truth)
-    df = pd.DataFrame({"participant": [f"P{i % 10:02d}" for i in range(n)], "trial": np.arange(n) // 10,
-                       "status": "selected", "reason": "", "pv": x[:, 0], "contact_speed": 0.5,
-                       "duration": 0.6, "sparc": x[:, 1], "ldlj": -6.0})
+    df = pd.DataFrame(
+        {
+            "participant": [f"P{i % 10:02d}" for i in range(n)],
+            "trial": np.arange(n) // 10,
+            "status": "selected",
+            "reason": "",
+            "pv": x[:, 0],
+            "contact_speed": 0.5,
+            "duration": 0.6,
+            "sparc": x[:, 1],
+            "ldlj": -6.0,
+        }
+    )
     return df, truth
 
 
@@ -60,6 +76,7 @@ def zspace(df: pd.DataFrame, scaling: str) -> np.ndarray:
 
 
 # --- K-means prototypes -----------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("method", ["kmeans", "gmm", "agglomerative"])
 def test_deterministic(method):
@@ -159,6 +176,7 @@ def test_feature_frame_arrays():
 
 # --- errors -----------------------------------------------------------------------------------
 
+
 def test_errors(data):
     df, _ = data
     bad = df.copy()
@@ -209,6 +227,7 @@ def test_duplicate_only_data():
 
 # --- silhouette sweep -------------------------------------------------------------------------
 
+
 def test_sweep_range_and_contract(data):
     df, _ = data
     with warnings.catch_warnings():
@@ -251,6 +270,7 @@ def test_failing_clusters_and_validity():
 
 # --- stability --------------------------------------------------------------------------------
 
+
 def test_ari_is_one_on_separated_blobs(data):
     df, _ = data
     np.testing.assert_array_equal(seed_stability(df, 6, seeds=range(1, 6)), 1.0)
@@ -280,6 +300,7 @@ def test_ari_below_one_when_k_is_wrong():
 
 # --- results.json -----------------------------------------------------------------------------
 
+
 def test_results_section_json(data):
     """Sizes, centres, prototypes and average silhouette against the known blobs (sizes 25, 22, .., 10,
     so that a permutation of the clusters shows), computed without skilllib."""
@@ -301,8 +322,12 @@ def test_results_section_json(data):
     for c in cl:  # the prototype is the blob member nearest the blob's mean
         members = np.flatnonzero(truth == c["id"])
         row = members[np.argmin(np.linalg.norm(x[members] - means[c["id"]], axis=1))]
-        assert c["prototype"] == {"participant": df.at[row, "participant"], "trial": int(df.at[row, "trial"]),
-                                  "pv": x[row, 0], "sparc": x[row, 1]}
+        assert c["prototype"] == {
+            "participant": df.at[row, "participant"],
+            "trial": int(df.at[row, "trial"]),
+            "pv": x[row, 0],
+            "sparc": x[row, 1],
+        }
     assert type(cl[0]["prototype"]["trial"]) is int and type(cl[0]["prototype"]["participant"]) is str
 
 
@@ -344,6 +369,7 @@ def test_raw_scaling_does_depend_on_units():
 
 # --- figures ----------------------------------------------------------------------------------
 
+
 def test_figures(tmp_path, data):
     import matplotlib.pyplot as plt
 
@@ -375,6 +401,7 @@ def test_figures(tmp_path, data):
 
 
 # --- threads ----------------------------------------------------------------------------------
+
 
 def test_fits_run_single_threaded_and_restore_limits():
     from threadpoolctl import threadpool_info

@@ -5,6 +5,7 @@ Each test says which wrong behaviour it catches. Expected values come from sciki
 directly (KMeans, silhouette_samples, adjusted_rand_score, StandardScaler) or from the rule's
 definition, never from skilllib's own output.
 """
+
 from __future__ import annotations
 
 import json
@@ -18,7 +19,6 @@ from sklearn.metrics import adjusted_rand_score, silhouette_samples
 from sklearn.preprocessing import StandardScaler
 from threadpoolctl import threadpool_limits
 
-from skilllib.prototypes import _kmeans as prototypes
 from skilllib.prototypes import (
     DEFAULT_K,
     failing_clusters,
@@ -28,6 +28,7 @@ from skilllib.prototypes import (
     seed_stability,
     silhouette_sweep,
 )
+from skilllib.prototypes import _kmeans as prototypes
 
 # Six blobs in (PV m/s, SPARC), listed in PV order, overlapping at sd = (0.15, 0.4): the partition
 # depends on the seed, on n_init and on the scaling, so a dropped option shows in the result.
@@ -40,8 +41,14 @@ def overlapping(n_per: int = 15, seed: int = 4) -> pd.DataFrame:
     x = CENTRES[truth] + rng.normal(0, 1, (len(truth), 2)) * np.array([0.15, 0.4])
     x = x[rng.permutation(len(truth))]
     n = len(truth)
-    return pd.DataFrame({"participant": [f"P{i % 10:02d}" for i in range(n)], "trial": np.arange(n) // 10,
-                         "pv": x[:, 0], "sparc": x[:, 1]})
+    return pd.DataFrame(
+        {
+            "participant": [f"P{i % 10:02d}" for i in range(n)],
+            "trial": np.arange(n) // 10,
+            "pv": x[:, 0],
+            "sparc": x[:, 1],
+        }
+    )
 
 
 @pytest.fixture(scope="module")
@@ -60,6 +67,7 @@ def kmeans_labels(z: np.ndarray, k: int, random_state: int, n_init: int) -> np.n
 
 
 # --- feature_frame -----------------------------------------------------------------------------
+
 
 def test_feature_frame_keeps_the_given_ids():
     """Given participant and trial ids are the frame's (and so the prototypes'). Catches ids replaced
@@ -85,18 +93,24 @@ def test_feature_frame_names_ids_of_the_wrong_length(participant, trial):
     that needs both to be wrong (pandas would then refuse with its own, less helpful message)."""
     p_size = 3 if participant is None else len(participant)
     t_size = 3 if trial is None else len(trial)
-    with pytest.raises(ValueError, match=rf"^participant \({p_size}\) and trial \({t_size}\) must have 3 values like pv$"):
+    with pytest.raises(
+        ValueError, match=rf"^participant \({p_size}\) and trial \({t_size}\) must have 3 values like pv$"
+    ):
         feature_frame([0.5, 0.6, 1.2], [-1.5, -1.6, -2.5], participant=participant, trial=trial)
 
 
 # --- errors and warnings ---------------------------------------------------------------------------
 
+
 def test_too_few_trials_message_states_the_rule():
     """The message gives the minimum (k + 1 trials) and why (Rousseeuw's 2 <= k <= n - 1). Catches a
     wrong number or altered reference in it."""
     f = feature_frame([0.5, 0.7, 0.9, 1.1, 1.3], [-1.5, -2.0, -1.7, -2.2, -1.9])
-    with pytest.raises(ValueError, match=r"^5 trials are too few for k = 6 clusters: need at least k \+ 1 = 7 "
-                                         r"\(the silhouette is defined for 2 <= k <= n - 1, Rousseeuw 1987\)$"):
+    with pytest.raises(
+        ValueError,
+        match=r"^5 trials are too few for k = 6 clusters: need at least k \+ 1 = 7 "
+        r"\(the silhouette is defined for 2 <= k <= n - 1, Rousseeuw 1987\)$",
+    ):
         fit_prototypes(f, 6)
 
 
@@ -104,8 +118,11 @@ def test_sweep_too_few_message_states_the_minimum():
     """Two trials cannot start a sweep at k = 2: the message asks for k_min + 1 = 3 trials and 2
     distinct points. Catches a wrong count."""
     f = feature_frame([0.5, 0.7], [-1.5, -2.0])
-    with pytest.raises(ValueError, match=r"^2 trials \(2 distinct \(pv, sparc\) points\) are too few for a "
-                                         r"silhouette sweep from k = 2: need at least 3 trials and 2 distinct points$"):
+    with pytest.raises(
+        ValueError,
+        match=r"^2 trials \(2 distinct \(pv, sparc\) points\) are too few for a "
+        r"silhouette sweep from k = 2: need at least 3 trials and 2 distinct points$",
+    ):
         silhouette_sweep(f)
 
 
@@ -125,6 +142,7 @@ def test_sweep_shrink_warning_points_at_the_caller():
 
 
 # --- the validity rule ---------------------------------------------------------------------------
+
 
 def test_failing_clusters_and_is_valid_use_the_given_average():
     """Both take the average line from ``average`` when given (the plot's line may be another run's).
@@ -189,11 +207,14 @@ def test_to_dict_names_method_and_scaling(df):
 
 # --- the sweep passes its options on -------------------------------------------------------------
 
+
 def same_fit(a, b) -> bool:
-    return (a.k, a.method, a.scaling, a.random_state, a.n_init) == (b.k, b.method, b.scaling, b.random_state,
-                                                                     b.n_init) \
-        and np.array_equal(a.labels, b.labels) and a.silhouette == b.silhouette \
+    return (
+        (a.k, a.method, a.scaling, a.random_state, a.n_init) == (b.k, b.method, b.scaling, b.random_state, b.n_init)
+        and np.array_equal(a.labels, b.labels)
+        and a.silhouette == b.silhouette
         and a.prototypes.equals(b.prototypes)
+    )
 
 
 def test_sweep_results_are_fit_prototypes_with_the_same_options(df):
@@ -220,6 +241,7 @@ def test_sweep_of_one_k_and_within_k_max():
 
 
 # --- seed stability: against scikit-learn ---------------------------------------------------------
+
 
 def ari_oracle(df, k, seeds, scaling="raw", random_state=0, n_init=10) -> list[float]:
     """The documented procedure with scikit-learn alone: K-means with random_state (the reference) and
@@ -248,8 +270,11 @@ def test_seed_stability_passes_every_option_on(df):
     expected = ari_oracle(df, 7, seeds, scaling="standard", random_state=5, n_init=1)
     np.testing.assert_allclose(got, expected, rtol=0, atol=1e-12)
     assert len(set(np.round(expected, 9))) > 1 and max(expected) < 1  # the seeds matter here
-    for other in (dict(scaling="raw", random_state=5, n_init=1), dict(scaling="standard", random_state=0, n_init=1),
-                  dict(scaling="standard", random_state=5, n_init=10)):
+    for other in (
+        dict(scaling="raw", random_state=5, n_init=1),
+        dict(scaling="standard", random_state=0, n_init=1),
+        dict(scaling="standard", random_state=5, n_init=10),
+    ):
         assert not np.allclose(got, ari_oracle(df, 7, seeds, **other))  # each option changes the answer
     assert DEFAULT_K != 7 and not np.allclose(got, ari_oracle(df, DEFAULT_K, seeds, "standard", 5, 1))
 
@@ -283,9 +308,16 @@ def test_duplicate_ids_are_counted_and_three_are_shown():
     """Five repeated (participant, trial) ids: the error counts all five and shows the first three (a
     message that lists every duplicate of a large table would be unreadable)."""
     from skilllib.prototypes import fit_prototypes
+
     n = 12
-    df = pd.DataFrame({"participant": ["p"] * n, "trial": [str(i % 7) for i in range(n)],
-                       "pv": np.linspace(0.3, 1.4, n), "sparc": np.linspace(-2.0, -1.4, n)})
+    df = pd.DataFrame(
+        {
+            "participant": ["p"] * n,
+            "trial": [str(i % 7) for i in range(n)],
+            "pv": np.linspace(0.3, 1.4, n),
+            "sparc": np.linspace(-2.0, -1.4, n),
+        }
+    )
     with pytest.raises(ValueError, match=r"^5 duplicate \(participant, trial\) id\(s\), e\.g\. ") as e:
         fit_prototypes(df, 2)
     assert str(e.value).endswith("[('p', '0'), ('p', '1'), ('p', '2')]")

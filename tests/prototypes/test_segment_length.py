@@ -1,4 +1,5 @@
 """skilllib.prototypes: partial correlation, explained variance, adjusted SPARC, SPARC by segment length."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -8,6 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from skilllib.cohort import CohortModel, generate_cohort
+from skilllib.features import trial_features
 from skilllib.prototypes import (
     LENGTH_EDGES,
     adjusted_sparc,
@@ -16,14 +18,14 @@ from skilllib.prototypes import (
     variance_explained,
     with_covariates,
 )
-from skilllib.features import trial_features
 
 
 def _frame(seed: int, n: int = 200) -> pd.DataFrame:
     rng = np.random.default_rng(seed)
     z = rng.normal(size=n)
-    return pd.DataFrame({"z": z, "x": 2 * z + rng.normal(size=n), "y": -z + rng.normal(size=n),
-                         "w": rng.normal(size=n)})
+    return pd.DataFrame(
+        {"z": z, "x": 2 * z + rng.normal(size=n), "y": -z + rng.normal(size=n), "w": rng.normal(size=n)}
+    )
 
 
 @settings(max_examples=30, deadline=None)
@@ -31,7 +33,7 @@ def _frame(seed: int, n: int = 200) -> pd.DataFrame:
 def test_partial_correlation_is_the_textbook_formula_for_one_covariate(seed):
     d = _frame(seed)
     r = d[["x", "y", "z"]].corr()
-    expected = (r.x.y - r.x.z * r.y.z) / np.sqrt((1 - r.x.z ** 2) * (1 - r.y.z ** 2))
+    expected = (r.x.y - r.x.z * r.y.z) / np.sqrt((1 - r.x.z**2) * (1 - r.y.z**2))
     assert partial_correlation(d, "x", "y", ["z"]) == pytest.approx(expected, abs=1e-10)
     assert partial_correlation(d, "x", "y", []) == pytest.approx(r.x.y, abs=1e-12)
 
@@ -56,8 +58,9 @@ def test_adjusted_sparc_keeps_the_mean_and_drops_the_covariates_linear_part():
     a = adjusted_sparc(d, ["z"])
     assert a.mean() == pytest.approx(d.sparc.mean())
     assert abs(np.corrcoef(a, d.z)[0, 1]) < 1e-10
-    np.testing.assert_allclose(a - a.mean(), 0.02 * (d.w - d.w.mean()) - 0.02 * np.polyfit(d.z, d.w, 1)[0] * (d.z - d.z.mean()),
-                               atol=1e-12)
+    np.testing.assert_allclose(
+        a - a.mean(), 0.02 * (d.w - d.w.mean()) - 0.02 * np.polyfit(d.z, d.w, 1)[0] * (d.z - d.z.mean()), atol=1e-12
+    )
     assert (a.index == d.index).all()
 
 

@@ -1,4 +1,5 @@
 """skilllib.prototypes: the clustering under several SPARC settings, checked against direct computation."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -6,11 +7,11 @@ import pandas as pd
 import pytest
 from sklearn.metrics import adjusted_rand_score
 
-from skilllib.prototypes import _kmeans as pt
 from skilllib.cohort import CohortModel, generate_cohort
-from skilllib.recordings import recordings_from_frame
 from skilllib.features import segment, select
 from skilllib.prototypes import CHANGE_TOL, complete_params, setting_label, sparc_sensitivity
+from skilllib.prototypes import _kmeans as pt
+from skilllib.recordings import recordings_from_frame
 from skilllib.smoothness import SPARC_PARAMS, sparc_spectrum
 
 SETTINGS = ({"fc": 20.0}, {"fc": 10.0}, {"fc": 20.0, "amp_th": 0.1, "padlevel": 3})
@@ -32,13 +33,16 @@ def test_each_setting_measures_every_selected_trial_with_its_own_parameters(rec,
     for run in sens.runs:
         sel = run.selected
         assert len(sel) > 20
-        for p, tr, value, end, capped in sel[["participant", "trial", "sparc", "sparc_band_end_hz",
-                                              "sparc_capped"]].itertuples(index=False):
+        for p, tr, value, end, capped in sel[
+            ["participant", "trial", "sparc", "sparc_band_end_hz", "sparc_capped"]
+        ].itertuples(index=False):
             s = sparc_spectrum(segment(rec, p, tr).speed, rec.fs, **run.params)
             assert value == pytest.approx(s.sparc, abs=1e-9)
             assert end == pytest.approx(s.cutoff, abs=1e-9) and bool(capped) == s.capped
-        assert run.n_capped == sum(sparc_spectrum(segment(rec, p, tr).speed, rec.fs, **run.params).capped
-                                   for p, tr in sel[["participant", "trial"]].itertuples(index=False))
+        assert run.n_capped == sum(
+            sparc_spectrum(segment(rec, p, tr).speed, rec.fs, **run.params).capped
+            for p, tr in sel[["participant", "trial"]].itertuples(index=False)
+        )
 
 
 def test_comparison_counts_changes_refits_and_shared_prototypes_as_computed_directly(sens):
@@ -50,7 +54,9 @@ def test_comparison_counts_changes_refits_and_shared_prototypes_as_computed_dire
         d = run.selected["sparc"].to_numpy() - ref.selected["sparc"].to_numpy()
         c = comp.loc[run.label]
         assert c["changed"] == np.sum(np.abs(d) > CHANGE_TOL) and c["of"] == len(d)
-        assert c["mean |change|"] == pytest.approx(np.abs(d).mean()) and c["max |change|"] == pytest.approx(np.abs(d).max())
+        assert c["mean |change|"] == pytest.approx(np.abs(d).mean()) and c["max |change|"] == pytest.approx(
+            np.abs(d).max()
+        )
         fit = pt.fit_prototypes(run.selected, K)
         assert c["ARI"] == pytest.approx(adjusted_rand_score(ref_fit.labels, fit.labels))
         ids = lambda f: set(f.prototypes[["participant", "trial"]].itertuples(index=False, name=None))  # noqa: E731
@@ -97,7 +103,9 @@ def test_to_dict_is_json_ready_and_matches_the_tables(sens):
 
 def test_settings_are_completed_and_checked():
     assert complete_params({"fc": 10}) == {**SPARC_PARAMS, "fc": 10.0}
-    assert complete_params({"padlevel": 3.0})["padlevel"] == 3 and isinstance(complete_params({"padlevel": 3.0})["padlevel"], int)
+    assert complete_params({"padlevel": 3.0})["padlevel"] == 3 and isinstance(
+        complete_params({"padlevel": 3.0})["padlevel"], int
+    )
     with pytest.raises(ValueError, match="unknown SPARC parameter"):
         complete_params({"cutoff": 10})
     with pytest.raises(ValueError, match="no SPARC settings"):

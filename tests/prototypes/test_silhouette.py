@@ -4,6 +4,7 @@ stratified subsample estimate above it, validity on the pooled subsamples, figur
 The threshold is patched down (200 points, subsamples of 150) so that the estimate runs on a few hundred
 points in milliseconds; expected values come from scikit-learn's silhouette_samples on all points.
 """
+
 from __future__ import annotations
 
 import json
@@ -14,7 +15,6 @@ import pandas as pd
 import pytest
 from sklearn.metrics import silhouette_samples
 
-from skilllib.prototypes import _silhouette as sil
 from skilllib.prototypes import (
     SILHOUETTE_EXACT_MAX,
     failing_clusters,
@@ -22,6 +22,7 @@ from skilllib.prototypes import (
     fit_prototypes,
     silhouette_sweep,
 )
+from skilllib.prototypes import _silhouette as sil
 
 matplotlib.use("Agg")
 
@@ -133,8 +134,9 @@ def planted(tight_middle: bool, seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
     average: it fails) or as tight as the others (it does not)."""
     rng = np.random.default_rng(seed)
     sd = 0.1 if tight_middle else 1.5
-    z = np.r_[rng.normal(0, 0.1, (300, 2)), rng.normal(0, 0.1, (300, 2)) + [10, 0],
-              rng.normal(0, sd, (300, 2)) + [5, 0]]
+    z = np.r_[
+        rng.normal(0, 0.1, (300, 2)), rng.normal(0, 0.1, (300, 2)) + [10, 0], rng.normal(0, sd, (300, 2)) + [5, 0]
+    ]
     return z, np.repeat([0, 1, 2], 300)
 
 
@@ -159,6 +161,7 @@ def test_result_validity_is_judged_on_the_pooled_subsamples(small_threshold):
 
 def test_result_judges_validity_with_its_own_average_and_sampled_labels(small_threshold):
     import dataclasses
+
     r = fit_prototypes(blobs(100), 4)
     assert r.failing_clusters() == [] and r.valid
     assert dataclasses.replace(r, silhouette=0.999).failing_clusters() == [0, 1, 2, 3]  # the line it uses
@@ -166,8 +169,11 @@ def test_result_judges_validity_with_its_own_average_and_sampled_labels(small_th
     assert negative.failing_clusters() == [] and not negative.valid  # validity also needs average > 0
     est = r.silhouette_estimate
     keep = r.labels[est.rows] != 3  # as if cluster 3 had never been sampled
-    r3 = dataclasses.replace(r, silhouette_samples=r.silhouette_samples[keep],
-                             silhouette_estimate=dataclasses.replace(est, rows=est.rows[keep]))
+    r3 = dataclasses.replace(
+        r,
+        silhouette_samples=r.silhouette_samples[keep],
+        silhouette_estimate=dataclasses.replace(est, rows=est.rows[keep]),
+    )
     assert r3.failing_clusters() == [3] and not r3.valid
 
 
@@ -182,6 +188,7 @@ def test_figures_run_on_a_subsample_result(small_threshold):
     from matplotlib.container import ErrorbarContainer
 
     from skilllib.figures import plot_silhouette_sweep, plot_silhouettes
+
     sw = silhouette_sweep(blobs(75), 2, 4)
     r = sw.results[4]
     assert r.silhouette_method == "subsample" and len(r.silhouette_samples) == 8 * 150 != len(r.data)
@@ -204,7 +211,12 @@ def test_estimate_dict_names_the_method_and_is_json(small_threshold):
     sw = silhouette_sweep(blobs(75), 2, 5)
     d = json.loads(json.dumps(sw.estimate_dict(), allow_nan=False))
     assert {k: d[k] for k in ("method", "exact_max", "n_points", "sample_size", "repeats")} == {
-        "method": "subsample", "exact_max": 200, "n_points": 300, "sample_size": 150, "repeats": 8}
+        "method": "subsample",
+        "exact_max": 200,
+        "n_points": 300,
+        "sample_size": 150,
+        "repeats": 8,
+    }
     assert list(d["per_k"]) == list(sw.to_dict()) == ["2", "3", "4", "5"]
     for k, v in d["per_k"].items():
         a = sw.results[int(k)].silhouette_estimate.averages
@@ -216,5 +228,11 @@ def test_estimate_dict_names_the_method_and_is_json(small_threshold):
 def test_estimate_dict_of_an_exact_sweep_has_no_spread():
     sw = silhouette_sweep(blobs(25), 2, 4)
     d = json.loads(json.dumps(sw.estimate_dict(), allow_nan=False))
-    assert d == {"method": "exact", "exact_max": 5_000, "n_points": 100, "sample_size": None, "repeats": None,
-                 "per_k": {k: {"mean": v} for k, v in sw.to_dict().items()}}
+    assert d == {
+        "method": "exact",
+        "exact_max": 5_000,
+        "n_points": 100,
+        "sample_size": None,
+        "repeats": None,
+        "per_k": {k: {"mean": v} for k, v in sw.to_dict().items()},
+    }

@@ -4,6 +4,7 @@ Every file is written by the test: C3D files with the c3d library (the reader's 
 Values are checked against the written ones (positions after unit conversion, time stamps, the contact
 sample), and every error message against the names it must list.
 """
+
 from __future__ import annotations
 
 import gzip
@@ -18,11 +19,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from skilllib.recordings import DataFormatError, recordings_from_frame
 from skilllib.features import trial_features
 from skilllib.recordings import (
     UNIT_FACTORS,
     UP_AXIS_ROTATIONS,
+    DataFormatError,
     FileProblem,
     contact_from_height,
     map_frame,
@@ -32,6 +33,7 @@ from skilllib.recordings import (
     read_csv_table,
     read_folder,
     read_trc,
+    recordings_from_frame,
     up_axis_rotation,
 )
 
@@ -52,10 +54,18 @@ def _pack(labels: list[str]) -> tuple[str, int]:
     return "".join(s.ljust(width) for s in labels), width
 
 
-def write_c3d(path: Path, markers: dict[str, np.ndarray], *, rate: float = FS, units: str = "mm",
-              first_frame: int = 1, analogs: dict[str, np.ndarray] | None = None,
-              events: list[tuple[str, float]] = (), missing: dict[str, list[int]] | None = None,
-              angles: list[str] = ()) -> Path:
+def write_c3d(
+    path: Path,
+    markers: dict[str, np.ndarray],
+    *,
+    rate: float = FS,
+    units: str = "mm",
+    first_frame: int = 1,
+    analogs: dict[str, np.ndarray] | None = None,
+    events: list[tuple[str, float]] = (),
+    missing: dict[str, list[int]] | None = None,
+    angles: list[str] = (),
+) -> Path:
     """A C3D file written with the reader's library: ``markers`` name -> (n, 3) positions in the file's
     ``units`` (``""``: blank POINT:UNITS); ``missing`` frames get a negative residual (the C3D 'not seen');
     ``angles`` are extra points listed as POINT:ANGLES; ``analogs`` name -> (n * m,) samples, m per frame;
@@ -77,7 +87,7 @@ def write_c3d(path: Path, markers: dict[str, np.ndarray], *, rate: float = FS, u
             pts[j, :3] = markers[name][i]
             if i in (missing or {}).get(name, ()):
                 pts[j, 3] = -1
-        pts[len(markers):, :3] = 7.0
+        pts[len(markers) :, :3] = 7.0
         frames[i, 0] = pts
         frames[i, 1] = ana[i] if analogs else np.zeros((0, 0))
     w.add_frames(frames)
@@ -86,8 +96,9 @@ def write_c3d(path: Path, markers: dict[str, np.ndarray], *, rate: float = FS, u
         g = w.add_group(50, "EVENT", "events")
         g.add_str("LABELS", "event labels", *_pack([lab for lab, _ in events]), len(events))
         times = np.array([[0.0, tm] for _, tm in events], dtype=np.float32)  # C3D dims [2, n]: minutes, seconds
-        g.add_param("TIMES", desc="event times", bytes_per_element=4, bytes=times.tobytes(),
-                    dimensions=[2, len(events)])
+        g.add_param(
+            "TIMES", desc="event times", bytes_per_element=4, bytes=times.tobytes(), dimensions=[2, len(events)]
+        )
         g.add("USED", "number of events", 2, "<H", len(events))
     with open(path, "wb") as handle, warnings.catch_warnings():
         warnings.simplefilter("ignore")  # c3d warns "No analog data found in file." for a file without analogs
@@ -95,15 +106,25 @@ def write_c3d(path: Path, markers: dict[str, np.ndarray], *, rate: float = FS, u
     return path
 
 
-def write_trc(path: Path, markers: dict[str, np.ndarray], *, rate: float = FS, units: str = "mm", t0: float = 0.0,
-              blank_line: bool = True, cells: dict[tuple[int, int], str] | None = None) -> Path:
+def write_trc(
+    path: Path,
+    markers: dict[str, np.ndarray],
+    *,
+    rate: float = FS,
+    units: str = "mm",
+    t0: float = 0.0,
+    blank_line: bool = True,
+    cells: dict[tuple[int, int], str] | None = None,
+) -> Path:
     """A TRC file (OpenSim layout, tabs); ``cells`` overrides data cells by (row, column) with text."""
     n = len(next(iter(markers.values())))
-    lines = [f"PathFileType\t4\t(X/Y/Z)\t{path.name}",
-             "DataRate\tCameraRate\tNumFrames\tNumMarkers\tUnits\tOrigDataRate\tOrigDataStartFrame\tOrigNumFrames",
-             f"{rate:g}\t{rate:g}\t{n}\t{len(markers)}\t{units}\t{rate:g}\t1\t{n}",
-             "Frame#\tTime\t" + "\t".join(f"{m}\t\t" for m in markers),
-             "\t\t" + "\t".join(f"X{i}\tY{i}\tZ{i}" for i in range(1, len(markers) + 1))]
+    lines = [
+        f"PathFileType\t4\t(X/Y/Z)\t{path.name}",
+        "DataRate\tCameraRate\tNumFrames\tNumMarkers\tUnits\tOrigDataRate\tOrigDataStartFrame\tOrigNumFrames",
+        f"{rate:g}\t{rate:g}\t{n}\t{len(markers)}\t{units}\t{rate:g}\t1\t{n}",
+        "Frame#\tTime\t" + "\t".join(f"{m}\t\t" for m in markers),
+        "\t\t" + "\t".join(f"X{i}\tY{i}\tZ{i}" for i in range(1, len(markers) + 1)),
+    ]
     if blank_line:
         lines.append("")
     for i in range(n):
@@ -117,6 +138,7 @@ def write_trc(path: Path, markers: dict[str, np.ndarray], *, rate: float = FS, u
 
 
 # --- C3D -----------------------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("units", ["mm", "cm", "m"])
 def test_c3d_positions_in_metres_from_the_header_unit_and_time_from_the_rate(tmp_path, units):
@@ -185,8 +207,9 @@ def test_c3d_contact_from_an_analog_channel_at_the_right_point_frame(tmp_path):
     n, m = 40, 10  # analog at 10 x the point rate
     volts = np.full(n * m, 0.2)
     volts[178:] = 4.8  # first high analog sample in point frame 17 (samples 170..179): "any", not "mean"
-    path = write_c3d(tmp_path / "a.c3d", {"tip": approach(n) * 1000}, analogs={"force": np.zeros(n * m),
-                     "Contact": volts})
+    path = write_c3d(
+        tmp_path / "a.c3d", {"tip": approach(n) * 1000}, analogs={"force": np.zeros(n * m), "Contact": volts}
+    )
     c = read_c3d(path)["contact"].to_numpy()
     assert c.tolist() == [0.0] * 17 + [1.0] * (n - 17)
     # an explicit threshold (the channel's units) above the high level: never in contact
@@ -197,8 +220,12 @@ def test_c3d_contact_from_an_analog_channel_at_the_right_point_frame(tmp_path):
 
 def test_c3d_contact_from_an_event_from_the_first_frame_at_or_after_it(tmp_path):
     n = 40
-    path = write_c3d(tmp_path / "a.c3d", {"tip": approach(n) * 1000}, first_frame=51,
-                     events=[("Other", 0.51), ("touch", 0.5 + 0.123), ("touch", 0.5 + 0.3)])
+    path = write_c3d(
+        tmp_path / "a.c3d",
+        {"tip": approach(n) * 1000},
+        first_frame=51,
+        events=[("Other", 0.51), ("touch", 0.5 + 0.123), ("touch", 0.5 + 0.3)],
+    )
     c = read_c3d(path, contact_channel="touch")["contact"].to_numpy()
     assert np.flatnonzero(c)[0] == 13 and c[13:].all()  # t = 0.63 s, the first frame after 0.623 s
     exact = write_c3d(tmp_path / "b.c3d", {"tip": approach(n) * 1000}, events=[("contact", 0.07)])
@@ -207,10 +234,14 @@ def test_c3d_contact_from_an_event_from_the_first_frame_at_or_after_it(tmp_path)
 
 
 def test_c3d_named_contact_channel_missing_lists_channels_and_events(tmp_path):
-    path = write_c3d(tmp_path / "a.c3d", {"tip": approach(20)}, analogs={"Fz": np.zeros(40)},
-                     events=[("Foot Strike", 0.1)])
-    with pytest.raises(DataFormatError, match=r"a\.c3d: no analog channel or event 'touch' "
-                                              r"\(analog channels: Fz; events: Foot Strike\)"):
+    path = write_c3d(
+        tmp_path / "a.c3d", {"tip": approach(20)}, analogs={"Fz": np.zeros(40)}, events=[("Foot Strike", 0.1)]
+    )
+    with pytest.raises(
+        DataFormatError,
+        match=r"a\.c3d: no analog channel or event 'touch' "
+        r"\(analog channels: Fz; events: Foot Strike\)",
+    ):
         read_c3d(path, contact_channel="touch")
 
 
@@ -225,8 +256,12 @@ def test_c3d_not_a_c3d_file(tmp_path):
 
 def test_c3d_cut_short_or_damaged_raises_a_one_line_error_never_another_exception(tmp_path):
     pos = approach(30) * 1000
-    good = write_c3d(tmp_path / "good.c3d", {"tip": pos}, analogs={"contact": np.r_[np.zeros(30), np.ones(30)]},
-                     events=[("Foot Strike", 0.1)])
+    good = write_c3d(
+        tmp_path / "good.c3d",
+        {"tip": pos},
+        analogs={"contact": np.r_[np.zeros(30), np.ones(30)]},
+        events=[("Foot Strike", 0.1)],
+    )
     raw = good.read_bytes()
     want = read_c3d(good)
     cut = tmp_path / "cut.c3d"
@@ -257,11 +292,17 @@ def test_c3d_cut_short_or_damaged_raises_a_one_line_error_never_another_exceptio
 
 # --- TRC -----------------------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("units,blank", [("mm", True), ("m", False)])
 def test_trc_positions_in_metres_time_from_the_file_and_marker_choice(tmp_path, units, blank):
     a, b = approach(30), approach(30) + 0.25
-    path = write_trc(tmp_path / "a.trc", {"tip": a / UNIT_FACTORS[units], "wrist": b / UNIT_FACTORS[units]},
-                     units=units, t0=1.5, blank_line=blank)
+    path = write_trc(
+        tmp_path / "a.trc",
+        {"tip": a / UNIT_FACTORS[units], "wrist": b / UNIT_FACTORS[units]},
+        units=units,
+        t0=1.5,
+        blank_line=blank,
+    )
     df = read_trc(path, marker="wrist")
     np.testing.assert_allclose(df[["x", "y", "z"]].to_numpy(), b, atol=1e-6 * UNIT_FACTORS[units])
     np.testing.assert_allclose(df["t"], 1.5 + np.arange(30) / FS, atol=1e-6)
@@ -296,6 +337,7 @@ def test_trc_header_checks(tmp_path):
 
 # --- mapping -------------------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("axis", sorted(UP_AXIS_ROTATIONS))
 def test_every_up_axis_is_a_proper_rotation_sending_up_to_plus_y(axis):
     r = up_axis_rotation(axis)
@@ -315,12 +357,14 @@ def test_z_up_matrix_as_documented_and_applied_to_a_table():
 
 
 @settings(max_examples=40, deadline=None)
-@given(axis=st.sampled_from(sorted(UP_AXIS_ROTATIONS)), unit=st.sampled_from(sorted(UNIT_FACTORS)),
-       pts=st.lists(st.tuples(*[st.floats(-2e3, 2e3, allow_nan=False)] * 3), min_size=2, max_size=6))
+@given(
+    axis=st.sampled_from(sorted(UP_AXIS_ROTATIONS)),
+    unit=st.sampled_from(sorted(UNIT_FACTORS)),
+    pts=st.lists(st.tuples(*[st.floats(-2e3, 2e3, allow_nan=False)] * 3), min_size=2, max_size=6),
+)
 def test_mapping_keeps_distances_up_to_the_unit_factor(axis, unit, pts):
     lab = np.array(pts)
-    df = pd.DataFrame({"t": np.arange(len(lab)) * 0.01, "x": lab[:, 0], "y": lab[:, 1], "z": lab[:, 2],
-                       "contact": 0})
+    df = pd.DataFrame({"t": np.arange(len(lab)) * 0.01, "x": lab[:, 0], "y": lab[:, 1], "z": lab[:, 2], "contact": 0})
     book = map_frame(df, units=unit, up_axis=axis)[["x", "y", "z"]].to_numpy()
     d_lab = np.linalg.norm(lab[:, None] - lab[None], axis=-1)
     d_book = np.linalg.norm(book[:, None] - book[None], axis=-1)
@@ -338,14 +382,18 @@ def test_unknown_unit_or_axis_is_an_error_naming_the_known_ones():
 
 
 def test_column_mapping_renames_and_reports_unknown_or_clashing_columns():
-    df = pd.DataFrame({"subject": ["01"], "rep": ["1"], "time": [0.0], "px": [1.0], "py": [2.0], "pz": [3.0],
-                       "touch": [0]})
+    df = pd.DataFrame(
+        {"subject": ["01"], "rep": ["1"], "time": [0.0], "px": [1.0], "py": [2.0], "pz": [3.0], "touch": [0]}
+    )
     cols = parse_columns("subject=participant, rep=trial,time=t,px=x,py=y,pz=z,touch=contact")
     out = map_frame(df, columns=cols)
     assert list(out.columns) == ["participant", "trial", "t", "x", "y", "z", "contact"]
     assert out["participant"].iloc[0] == "01"
-    with pytest.raises(DataFormatError, match=r"--columns names column 'pos_x', which the table does not have "
-                                              r"\(columns: subject, rep, time, px, py, pz, touch\)"):
+    with pytest.raises(
+        DataFormatError,
+        match=r"--columns names column 'pos_x', which the table does not have "
+        r"\(columns: subject, rep, time, px, py, pz, touch\)",
+    ):
         map_frame(df, columns={"pos_x": "x"})
     with pytest.raises(DataFormatError, match=r"column 'x' would appear twice"):
         map_frame(df.assign(x=0.0), columns={"px": "x"})
@@ -357,8 +405,16 @@ def test_contact_from_height_per_trial_at_the_first_sample_at_or_below_it():
     y1 = np.array([0.30, 0.20, 0.101, 0.10, 0.12, 0.05])  # at 0.10 on sample 3, then back up: stays 1
     y2 = np.array([0.30, 0.25, 0.09, 0.08, 0.07, 0.06])
     y3 = np.full(6, 0.5)  # never low: no contact
-    df = pd.DataFrame({"participant": ["a"] * 6 + ["b"] * 6 + ["b"] * 6, "trial": ["1"] * 6 + ["1"] * 6 + ["2"] * 6,
-                       "t": np.tile(np.arange(6) / FS, 3), "x": 0.0, "y": np.concatenate([y1, y2, y3]), "z": 0.0})
+    df = pd.DataFrame(
+        {
+            "participant": ["a"] * 6 + ["b"] * 6 + ["b"] * 6,
+            "trial": ["1"] * 6 + ["1"] * 6 + ["2"] * 6,
+            "t": np.tile(np.arange(6) / FS, 3),
+            "x": 0.0,
+            "y": np.concatenate([y1, y2, y3]),
+            "z": 0.0,
+        }
+    )
     c = map_frame(df, contact_height=0.10)["contact"].to_numpy()
     assert c.tolist() == [0, 0, 0, 1, 1, 1] + [0, 0, 1, 1, 1, 1] + [0] * 6
     assert contact_from_height(np.array([np.nan, 0.0]), 0.1).tolist() == [0.0, 1.0]
@@ -368,12 +424,24 @@ def test_contact_from_height_per_trial_at_the_first_sample_at_or_below_it():
 
 
 def test_a_measured_contact_flag_is_kept_and_no_contact_without_height_is_an_error():
-    df = pd.DataFrame({"participant": ["a"] * 4 + ["b"] * 4, "trial": "1", "t": np.tile(np.arange(4) / FS, 2),
-                       "x": 0.0, "y": 0.0, "z": 0.0, "contact": [0, 0, 0, 1] + [np.nan] * 4})
+    df = pd.DataFrame(
+        {
+            "participant": ["a"] * 4 + ["b"] * 4,
+            "trial": "1",
+            "t": np.tile(np.arange(4) / FS, 2),
+            "x": 0.0,
+            "y": 0.0,
+            "z": 0.0,
+            "contact": [0, 0, 0, 1] + [np.nan] * 4,
+        }
+    )
     out = map_frame(df, contact_height=0.5)  # y = 0 is below 0.5 m: trial b in contact from its first sample
     assert out["contact"].tolist() == [0, 0, 0, 1] + [1] * 4
-    with pytest.raises(DataFormatError, match=r"t\.csv: no contact flag in 1 trial\(s\) and no contact height: "
-                                              r"give the height.*--contact-height"):
+    with pytest.raises(
+        DataFormatError,
+        match=r"t\.csv: no contact flag in 1 trial\(s\) and no contact height: "
+        r"give the height.*--contact-height",
+    ):
         map_frame(df, source="t.csv")
     with pytest.raises(DataFormatError, match=r"no 'contact' column and no contact height"):
         map_frame(df.drop(columns="contact"))
@@ -402,10 +470,16 @@ def test_csv_identifiers_are_text_exactly_as_written(tmp_path, name):
 
 def test_csv_with_other_names_units_and_z_up_through_read_any(tmp_path):
     path = tmp_path / "vr.csv"
-    path.write_text("subject,rep,time,px,py,pz\n" + "".join(
-        f"S01,007,{i / FS},{10 * i},{-5.0},{300 - 40 * i}\n" for i in range(6)))
-    frame, _ = read_any(path, columns="subject=participant,rep=trial,time=t,px=x,py=y,pz=z", units="mm",
-                        up_axis="z", contact_height=0.15)
+    path.write_text(
+        "subject,rep,time,px,py,pz\n" + "".join(f"S01,007,{i / FS},{10 * i},{-5.0},{300 - 40 * i}\n" for i in range(6))
+    )
+    frame, _ = read_any(
+        path,
+        columns="subject=participant,rep=trial,time=t,px=x,py=y,pz=z",
+        units="mm",
+        up_axis="z",
+        contact_height=0.15,
+    )
     assert frame[["participant", "trial"]].iloc[0].tolist() == ["S01", "007"]
     np.testing.assert_allclose(frame["y"], (300 - 40 * np.arange(6)) / 1000)  # z_lab in m
     np.testing.assert_allclose(frame["z"], 0.005)  # -y_lab
@@ -424,6 +498,7 @@ def test_csv_blank_line_keeps_line_numbers_and_is_not_a_trial(tmp_path):
 
 
 # --- folders -------------------------------------------------------------------------------------
+
 
 def test_folder_rule_ids_are_text_and_trials_in_natural_order(tmp_path):
     pos = approach(80)
@@ -446,8 +521,9 @@ def test_folder_rule_ids_are_text_and_trials_in_natural_order(tmp_path):
 def test_folder_name_pattern(tmp_path):
     write_trc(tmp_path / "sub-07_run-2.trc", {"tip": approach(10)}, units="m")
     write_trc(tmp_path / "notes.trc", {"tip": approach(10)}, units="m")
-    frame, problems = read_folder(tmp_path, name_pattern=r"sub-(?P<participant>\w+)_run-(?P<trial>\d+)",
-                                  contact_height=0.2)
+    frame, problems = read_folder(
+        tmp_path, name_pattern=r"sub-(?P<participant>\w+)_run-(?P<trial>\d+)", contact_height=0.2
+    )
     assert frame[["participant", "trial"]].iloc[0].tolist() == ["07", "2"]
     assert [(Path(p.path).name, p.participant) for p in problems] == [("notes.trc", None)]
     assert "does not match the name pattern" in problems[0].reason
@@ -470,8 +546,13 @@ def test_a_broken_file_is_reported_while_the_others_are_read(tmp_path):
     assert frame[["participant", "trial"]].drop_duplicates().values.tolist() == [["A", "1"], ["A", "4"]]
     assert all(isinstance(p, FileProblem) for p in problems)
     got = {(Path(p.path).name, p.participant, p.trial): p.reason for p in problems}
-    assert set(got) == {("nounderscore.trc", None, None), ("5.trc", None, None), ("2.c3d", "A", "2"),
-                        ("3.c3d", "A", "3"), ("4.trc", "A", "4")}
+    assert set(got) == {
+        ("nounderscore.trc", None, None),
+        ("5.trc", None, None),
+        ("2.c3d", "A", "2"),
+        ("3.c3d", "A", "3"),
+        ("4.trc", "A", "4"),
+    }
     assert got["2.c3d", "A", "2"].startswith("not a readable C3D file")
     assert got["3.c3d", "A", "3"] == "2 markers (tip, wrist): choose one with --marker NAME"
     assert "also" in got["4.trc", "A", "4"] and "4.c3d" in got["4.trc", "A", "4"]
@@ -490,11 +571,13 @@ def test_folder_errors(tmp_path):
 
 def test_folder_of_per_trial_csv_logs(tmp_path):
     (tmp_path / "P1").mkdir()
-    (tmp_path / "P1" / "1.csv.gz").write_bytes(gzip.compress(
-        b"time,px,py,pz\n" + b"".join(f"{i / FS},0,{5 - i},100\n".encode() for i in range(6))))
+    (tmp_path / "P1" / "1.csv.gz").write_bytes(
+        gzip.compress(b"time,px,py,pz\n" + b"".join(f"{i / FS},0,{5 - i},100\n".encode() for i in range(6)))
+    )
     (tmp_path / "P1" / "2.csv").write_text("participant,trial,t,x,y,z\n")
-    frame, problems = read_folder(tmp_path, columns={"time": "t", "px": "x", "py": "y", "pz": "z"}, units="cm",
-                                  up_axis="-z", contact_height=0.03)
+    frame, problems = read_folder(
+        tmp_path, columns={"time": "t", "px": "x", "py": "y", "pz": "z"}, units="cm", up_axis="-z", contact_height=0.03
+    )
     np.testing.assert_allclose(frame["y"], -1.0)  # -z_lab = -100 cm
     np.testing.assert_allclose(frame["z"], (5 - np.arange(6)) / 100)  # y_lab
     assert frame["contact"].tolist() == [1.0] * 6
@@ -504,6 +587,7 @@ def test_folder_of_per_trial_csv_logs(tmp_path):
 
 
 # --- end to end ------------------------------------------------------------------------------------
+
 
 def test_a_z_up_c3d_in_mm_with_a_contact_event_runs_through_validation_and_features(tmp_path):
     pos = approach(100)

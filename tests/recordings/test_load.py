@@ -1,5 +1,6 @@
 """Recordings in other formats through the pipeline (issue 12): a folder of C3D files, a TRC file, a CSV
 with other column names, millimetres and z up, a DataFrame; unreadable files kept as invalid trials."""
+
 from __future__ import annotations
 
 import json
@@ -9,12 +10,11 @@ import pandas as pd
 import pytest
 from test_formats import write_c3d, write_trc
 
+from skilllib.cohort import CohortModel, generate_cohort
+from skilllib.features import trial_features
 from skilllib.pipeline import _run as pipeline
 from skilllib.pipeline import main
-from skilllib.cohort import CohortModel, generate_cohort
-from skilllib.recordings import recordings_from_frame
-from skilllib.features import trial_features
-from skilllib.recordings import UP_AXIS_ROTATIONS, load_recordings
+from skilllib.recordings import UP_AXIS_ROTATIONS, load_recordings, recordings_from_frame
 
 MODEL = CohortModel(n_participants=3, n_trials=8, fs=100.0)
 
@@ -42,16 +42,20 @@ def _same_features(got: pd.DataFrame, want: pd.DataFrame, atol: float) -> None:
     np.testing.assert_allclose(got.loc[ok, cols].to_numpy(float), want.loc[ok, cols].to_numpy(float), atol=atol)
 
 
-def test_a_folder_of_c3d_files_in_mm_z_up_with_an_analog_contact_runs_end_to_end(tmp_path, cohort, reference,
-                                                                               capsys):
+def test_a_folder_of_c3d_files_in_mm_z_up_with_an_analog_contact_runs_end_to_end(tmp_path, cohort, reference, capsys):
     """participant/<trial>.c3d, millimetres in the header, z up, contact from an analog channel sampled at
     four times the point rate: the same trials, statuses and features as the CSV of the same movements."""
     root = tmp_path / "lab"
     for (p, tr), g in cohort.frame.groupby(["participant", "trial"], sort=False):
         (root / f"P{p}").mkdir(parents=True, exist_ok=True)
         pos = _lab(g[["x", "y", "z"]].to_numpy(), "z") * 1000
-        write_c3d(root / f"P{p}" / f"{tr}.c3d", {"tip": pos}, rate=MODEL.fs, units="mm",
-                  analogs={"contact": np.repeat(g["contact"].to_numpy() * 5.0, 4)})
+        write_c3d(
+            root / f"P{p}" / f"{tr}.c3d",
+            {"tip": pos},
+            rate=MODEL.fs,
+            units="mm",
+            analogs={"contact": np.repeat(g["contact"].to_numpy() * 5.0, 4)},
+        )
     out = tmp_path / "out"
     code = main(["run", "--data", str(root), "--out", str(out), "--up-axis", "z", "--no-figures", "--lowpass", "none"])
     assert code in (0, 3), capsys.readouterr().err

@@ -1,5 +1,6 @@
 """Columnar data in and out (issue 15): Parquet files and folders as --data, with the CSV's checks and
 messages that name the file and row; the per-trial table as trials.parquet above 10,000 trials."""
+
 from __future__ import annotations
 
 import json
@@ -8,8 +9,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from skilllib.pipeline import _run as pipeline, _trials_file as trialtable
 from skilllib.cohort import CohortModel, generate_cohort
+from skilllib.pipeline import _run as pipeline
+from skilllib.pipeline import _trials_file as trialtable
 from skilllib.recordings import DataFormatError, read_recordings, write_recordings
 
 
@@ -62,8 +64,9 @@ def test_many_trials_go_to_trials_parquet(tmp_path, frame, monkeypatch):
     counts = inline.features["status"].value_counts()
     assert res["trial_counts"] == {s: int(counts.get(s, 0)) for s in ("selected", "excluded", "invalid")}
     table = trialtable.read_trials(tmp_path / "many")
-    pd.testing.assert_frame_equal(table, many.features.astype({c: str for c in ("participant", "trial", "status",
-                                                                                  "reason")}), check_dtype=False)
+    pd.testing.assert_frame_equal(
+        table, many.features.astype({c: str for c in ("participant", "trial", "status", "reason")}), check_dtype=False
+    )
     short = trialtable.read_trials(tmp_path / "inline")
     assert list(short["trial"]) == list(table["trial"]) and np.allclose(short["sparc"], table["sparc"], equal_nan=True)
     assert (tmp_path / "many" / "trials.parquet").exists() and not (tmp_path / "inline" / "trials.parquet").exists()

@@ -2,6 +2,7 @@
 
 Each bad-input case writes a small CSV in tmp_path and checks the error message or the trial's status.
 """
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -14,6 +15,8 @@ from hypothesis import strategies as st
 
 from skilllib.recordings import (
     COLUMNS,
+    JITTER_TOLERANCE,
+    MAX_GAP_INTERVALS,
     MAX_RANGE_M,
     MAX_TYPICAL_SPEED,
     MIN_RATE_HZ,
@@ -26,7 +29,6 @@ from skilllib.recordings import (
     recordings_from_frame,
     write_recordings,
 )
-from skilllib.recordings import JITTER_TOLERANCE, MAX_GAP_INTERVALS
 
 FS = 60.0
 
@@ -37,13 +39,23 @@ def trial_frame(participant=1, trial=1, n=40, fs=FS, contact_at=30, t0=0.0, scal
     tau = np.clip((np.arange(n) - 8) / (contact_at - 6), 0, 1)
     y = 0.1 * (1 - tau**3 * (10 - 15 * tau + 6 * tau**2))
     contact = (np.arange(n) >= contact_at).astype(int)
-    return pd.DataFrame({"participant": participant, "trial": trial, "t": t, "x": 0.01 * scale,
-                         "y": y * scale, "z": -0.02 * scale, "contact": contact})
+    return pd.DataFrame(
+        {
+            "participant": participant,
+            "trial": trial,
+            "t": t,
+            "x": 0.01 * scale,
+            "y": y * scale,
+            "z": -0.02 * scale,
+            "contact": contact,
+        }
+    )
 
 
 def cohort_frame(n_part=2, n_trials=3, **kw) -> pd.DataFrame:
-    return pd.concat([trial_frame(p, tr, **kw) for p in range(1, n_part + 1) for tr in range(1, n_trials + 1)],
-                     ignore_index=True)
+    return pd.concat(
+        [trial_frame(p, tr, **kw) for p in range(1, n_part + 1) for tr in range(1, n_trials + 1)], ignore_index=True
+    )
 
 
 def write(tmp_path: Path, df: pd.DataFrame, name="rec.csv") -> Path:
@@ -56,6 +68,7 @@ def status(rec, participant, trial) -> tuple[str, str]:
 
 
 # --- a good file --------------------------------------------------------------------------------
+
 
 def test_good_file_reads_with_all_trials_ok_and_60_hz(tmp_path):
     rec = read_recordings(write(tmp_path, cohort_frame()))
@@ -98,6 +111,7 @@ def test_extra_columns_and_blank_lines_are_tolerated(tmp_path):
 
 
 # --- file-level problems raise -----------------------------------------------------------------
+
 
 def test_missing_file(tmp_path):
     with pytest.raises(DataFormatError, match=r"nope\.csv: file not found"):
@@ -201,6 +215,7 @@ def test_mixed_sampling_rates_in_one_file(tmp_path):
 
 # --- trial-level problems mark the trial invalid -------------------------------------------------
 
+
 def bad_trial(tmp_path, edit) -> tuple[str, str, object]:
     """Cohort of 2 x 10 trials, ``edit(df)`` spoils participant 1 trial 2; returns its status and reason."""
     df = cohort_frame(2, 10)
@@ -221,6 +236,7 @@ def test_time_going_backwards(tmp_path):
         i = rows_of(df)[10]
         df.loc[i, "t"] = df.loc[i - 2, "t"]
         return df
+
     st_, reason, _ = bad_trial(tmp_path, edit)
     assert st_ == "invalid" and reason.startswith("time goes backwards at line 52")
 
@@ -230,6 +246,7 @@ def test_repeated_time_stamp(tmp_path):
         i = rows_of(df)[10]
         df.loc[i, "t"] = df.loc[i - 1, "t"]
         return df
+
     st_, reason, _ = bad_trial(tmp_path, edit)
     assert st_ == "invalid" and reason.startswith("time stamp repeated at line 52")
 
@@ -239,9 +256,12 @@ def test_nan_or_inf_position(tmp_path, value, word):
     def edit(df):
         df.loc[rows_of(df)[5], "z"] = value
         return df
+
     st_, reason, _ = bad_trial(tmp_path, edit)
-    assert (st_, reason) == ("invalid", f"z is {word} (NaN) at line 47" if word == "missing"
-                             else "z is infinite at line 47")
+    assert (st_, reason) == (
+        "invalid",
+        f"z is {word} (NaN) at line 47" if word == "missing" else "z is infinite at line 47",
+    )
 
 
 def test_empty_position_cell_is_nan(tmp_path):
@@ -258,8 +278,10 @@ def test_empty_position_cell_is_nan(tmp_path):
 def test_min_samples_at_both_sides_of_the_edge(tmp_path, n):
     """Exactly MIN_SAMPLES samples make a valid trial, one fewer an invalid one (catches ``<=`` for
     ``<`` and an off-by-one in the count)."""
+
     def edit(df):
         return df.drop(rows_of(df)[n:])
+
     st_, reason, rec = bad_trial(tmp_path, edit)
     assert len(rec.trial(1, 2).t) == n
     if n < MIN_SAMPLES:
@@ -273,6 +295,7 @@ def test_rows_not_contiguous(tmp_path):
         r = rows_of(df)
         moved = df.loc[r[30:]]
         return pd.concat([df.drop(r[30:]), moved], ignore_index=True)
+
     st_, reason, _ = bad_trial(tmp_path, edit)
     assert st_ == "invalid" and reason.startswith("rows not contiguous: line 42 to 71 and from line")
 
@@ -282,6 +305,7 @@ def test_trial_at_another_rate(tmp_path):
         r = rows_of(df)
         df.loc[r, "t"] = np.arange(len(r)) / 30.0
         return df
+
     st_, reason, _ = bad_trial(tmp_path, edit)
     assert st_ == "invalid" and reason.startswith("sampled at 30.0 Hz, the file at 60.0 Hz")
 
@@ -291,6 +315,7 @@ def test_gap_in_a_trial(tmp_path):
         r = rows_of(df)
         df.loc[r[20:], "t"] += 3 / 60  # three frames missing in a row: an interval of 4 dt
         return df
+
     st_, reason, _ = bad_trial(tmp_path, edit)
     assert st_ == "invalid" and reason.startswith("gap in the time stamps: 0.0666 s before line 62, 4.0 sampling")
 
@@ -299,6 +324,7 @@ def test_single_trial_with_huge_span(tmp_path):
     def edit(df):
         df.loc[rows_of(df)[12], "x"] = 5.0
         return df
+
     st_, reason, _ = bad_trial(tmp_path, edit)
     assert st_ == "invalid" and reason.startswith("positions span 4.99 m")
 
@@ -308,6 +334,7 @@ def test_missing_contact_flag(tmp_path):
         df["contact"] = df["contact"].astype(float)
         df.loc[rows_of(df)[33], "contact"] = np.nan
         return df
+
     st_, reason, _ = bad_trial(tmp_path, edit)
     assert (st_, reason) == ("invalid", "contact flag missing at line 75")
 
@@ -442,8 +469,11 @@ def test_mixed_fraction_at_both_sides_of_the_edge(extra):
         r = rows_of(df, 1, tr)
         df.loc[r, "t"] = np.arange(len(r)) * 2 * DT64
     if extra:
-        with pytest.raises(DataFormatError, match=rf"mixed sampling rates \({n - limit - 1} trials at 64 Hz, "
-                                                  rf"{limit + 1} trials at 32 Hz\)"):
+        with pytest.raises(
+            DataFormatError,
+            match=rf"mixed sampling rates \({n - limit - 1} trials at 64 Hz, "
+            rf"{limit + 1} trials at 32 Hz\)",
+        ):
             recordings_from_frame(df)
         return
     rec = recordings_from_frame(df)
@@ -469,9 +499,16 @@ def test_slowest_rate_at_both_sides_of_the_edge(beyond):
         assert (rec.trials.status == "ok").all() and rec.fs == pytest.approx(1 / step)
 
 
-@pytest.mark.parametrize("fs, unit, factor", [(60.0, "milliseconds", 1e3), (2000.0, "milliseconds", 1e3),
-                                              (5000.0, "milliseconds", 1e3), (60.0, "microseconds", 1e6),
-                                              (250.0, "microseconds", 1e6)])
+@pytest.mark.parametrize(
+    "fs, unit, factor",
+    [
+        (60.0, "milliseconds", 1e3),
+        (2000.0, "milliseconds", 1e3),
+        (5000.0, "milliseconds", 1e3),
+        (60.0, "microseconds", 1e6),
+        (250.0, "microseconds", 1e6),
+    ],
+)
 def test_the_unit_of_the_time_stamps_is_named(fs, unit, factor):
     """Time in ms or us is recognised at any rate of motion capture (2 kHz in ms has steps of 0.5, which
     an earlier rule read as a 2 Hz file in seconds), and the advice names the unit and its factor."""
@@ -503,8 +540,19 @@ def units_frame(y_of_trial) -> pd.DataFrame:
     for p in (1, 2):
         for tr in (1, 2, 3):
             y = y_of_trial(40)
-            parts.append(pd.DataFrame({"participant": p, "trial": tr, "t": np.arange(40) * DT64, "x": 0.0,
-                                       "y": y, "z": 0.0, "contact": (np.arange(40) >= 30).astype(int)}))
+            parts.append(
+                pd.DataFrame(
+                    {
+                        "participant": p,
+                        "trial": tr,
+                        "t": np.arange(40) * DT64,
+                        "x": 0.0,
+                        "y": y,
+                        "z": 0.0,
+                        "contact": (np.arange(40) >= 30).astype(int),
+                    }
+                )
+            )
     return pd.concat(parts, ignore_index=True)
 
 
@@ -539,6 +587,7 @@ def test_typical_speed_at_both_sides_of_max_typical_speed(beyond):
 
 
 # --- issue 12: identifiers are text, compressed files, physical line numbers, long cells, jitter ------------
+
 
 def test_ids_are_text_as_written_and_never_merged(tmp_path):
     """'01' and '1', 'NA', a 17-digit id and '1e20' are five distinct participants (and trials); results
@@ -613,8 +662,19 @@ def _jittered_log(jitter: float, fs: float = 250.0, n: int = 200, n_trials: int 
         keep[rng.choice(np.arange(5, n - 5), drops, replace=False)] = False
         t = np.sort(t[keep])
         y = 0.1 * np.cos(np.pi * np.clip(t / 0.6, 0, 1))
-        frames.append(pd.DataFrame({"participant": "P", "trial": str(tr), "t": t, "x": 0.0, "y": y, "z": 0.0,
-                                    "contact": (t >= 0.7).astype(int)}))
+        frames.append(
+            pd.DataFrame(
+                {
+                    "participant": "P",
+                    "trial": str(tr),
+                    "t": t,
+                    "x": 0.0,
+                    "y": y,
+                    "z": 0.0,
+                    "contact": (t >= 0.7).astype(int),
+                }
+            )
+        )
     return pd.concat(frames, ignore_index=True)
 
 

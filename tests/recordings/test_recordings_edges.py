@@ -3,13 +3,13 @@ of tests/test_data.py leave open: files without a final line end, a byte-order m
 archives, physical line numbers, and the values the validation gives back (rates, reasons, resampled
 trials). Expected values come from the definitions in the module docstrings or from the csv module.
 """
-from __future__ import annotations
 
-import re
+from __future__ import annotations
 
 import csv
 import gzip
 import io
+import re
 from pathlib import Path
 
 import numpy as np
@@ -18,13 +18,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from skilllib.recordings import read_table, record_lines
 from skilllib.recordings import (
     COLUMNS,
     MAX_TYPICAL_SPEED,
     MIN_RATE_HZ,
     DataFormatError,
     read_recordings,
+    read_table,
+    record_lines,
     recordings_from_frame,
 )
 
@@ -36,13 +37,24 @@ def trial_frame(participant="1", trial="1", n=40, contact_at=30, t0=0.0) -> pd.D
     """A plausible trial at FS: rest, a 0.1 m downward minimum-jerk approach, contact from ``contact_at``."""
     tau = np.clip((np.arange(n) - 8) / (contact_at - 6), 0, 1)
     y = 0.1 * (1 - tau**3 * (10 - 15 * tau + 6 * tau**2))
-    return pd.DataFrame({"participant": participant, "trial": trial, "t": t0 + np.arange(n) * DT, "x": 0.01,
-                         "y": y, "z": -0.02, "contact": (np.arange(n) >= contact_at).astype(int)})
+    return pd.DataFrame(
+        {
+            "participant": participant,
+            "trial": trial,
+            "t": t0 + np.arange(n) * DT,
+            "x": 0.01,
+            "y": y,
+            "z": -0.02,
+            "contact": (np.arange(n) >= contact_at).astype(int),
+        }
+    )
 
 
 def cohort_frame(n_part=2, n_trials=3, **kw) -> pd.DataFrame:
-    return pd.concat([trial_frame(str(p), str(tr), **kw) for p in range(1, n_part + 1)
-                      for tr in range(1, n_trials + 1)], ignore_index=True)
+    return pd.concat(
+        [trial_frame(str(p), str(tr), **kw) for p in range(1, n_part + 1) for tr in range(1, n_trials + 1)],
+        ignore_index=True,
+    )
 
 
 def status(rec, participant, trial) -> tuple[str, str]:
@@ -51,6 +63,7 @@ def status(rec, participant, trial) -> tuple[str, str]:
 
 
 # --- csvtable: physical lines --------------------------------------------------------------------
+
 
 def csv_module_lines(text: str) -> list[int]:
     """The first physical line of each record after the header, counted by the csv module."""
@@ -71,8 +84,7 @@ def test_record_lines_one_per_line_with_or_without_a_final_line_end(final_newlin
 
 
 @settings(max_examples=60, deadline=None)
-@given(rows=st.lists(st.sampled_from(["1,2", "", "x,y", " ,3"]), min_size=1, max_size=12),
-       final_newline=st.booleans())
+@given(rows=st.lists(st.sampled_from(["1,2", "", "x,y", " ,3"]), min_size=1, max_size=12), final_newline=st.booleans())
 def test_record_lines_without_quotes_agree_with_the_csv_module(rows, final_newline):
     """The fast path for text without quotes counts the records the csv module counts (blank lines are
     records), at the lines where they start."""
@@ -134,6 +146,7 @@ def test_record_lines_of_a_quoted_header_alone_are_an_empty_list_of_integers():
 
 # --- csvtable: opening the file ------------------------------------------------------------------
 
+
 def test_blank_lines_before_the_header_raise_an_error_naming_the_file(tmp_path):
     """Blank lines before the header leave pandas no columns: a DataFormatError naming the file and
     saying where the header must be (not a pandas exception, not "file is empty" for a file with data)."""
@@ -170,6 +183,7 @@ def test_a_damaged_archive_cannot_be_decompressed(tmp_path, damage):
 
 # --- data: what validation gives back --------------------------------------------------------------
 
+
 def test_a_table_that_is_not_a_dataframe_is_named_by_its_type():
     with pytest.raises(DataFormatError, match=r"^<DataFrame>: expected a pandas DataFrame, got dict$"):
         recordings_from_frame({c: [] for c in COLUMNS})
@@ -191,8 +205,7 @@ def mixed_file(tmp_path) -> Path:
     a3.loc[GAP_AT:, "t"] += (GAP_INTERVALS - 1) * DT
     b2 = trial_frame("B", "2")
     b2.loc[5, "t"] -= JITTER * DT
-    df = pd.concat([trial_frame("A", "1"), a2, a3, trial_frame("B", "1", n=3, contact_at=2), b2],
-                   ignore_index=True)
+    df = pd.concat([trial_frame("A", "1"), a2, a3, trial_frame("B", "1", n=3, contact_at=2), b2], ignore_index=True)
     p = tmp_path / "mixed.csv"
     df.to_csv(p, index=False)
     return p
@@ -210,9 +223,11 @@ def test_the_trial_table_states_every_trial_as_the_file_has_it(tmp_path):
     assert tr.first_line.tolist() == [2, 2 + N, 2 + 2 * N, 2 + 3 * N, 2 + 3 * N + 3]
     assert tr.status.tolist() == ["ok", "ok", "invalid", "invalid", "ok"]
     gap_line = 2 + 2 * N + GAP_AT
-    assert tr.reason[2] == (f"gap in the time stamps: {GAP_INTERVALS * DT:.4f} s before line {gap_line}, "
-                            f"{GAP_INTERVALS:.1f} sampling intervals (the file samples every {DT:.4f} s; "
-                            f"at most 3.5 are bridged by resampling)")
+    assert tr.reason[2] == (
+        f"gap in the time stamps: {GAP_INTERVALS * DT:.4f} s before line {gap_line}, "
+        f"{GAP_INTERVALS:.1f} sampling intervals (the file samples every {DT:.4f} s; "
+        f"at most 3.5 are bridged by resampling)"
+    )
     assert tr.reason[3] == "too few samples (3; need at least 5)"
     assert tr.reason[[0, 1, 4]].tolist() == ["", "", ""]
     resampled = f"resampled: jitter up to {1e3 * JITTER * DT:.2g} ms"
@@ -280,12 +295,15 @@ def spoil(df: pd.DataFrame, column: str, row: int, value) -> pd.DataFrame:
     return df
 
 
-@pytest.mark.parametrize("column, value, what", [
-    ("participant", " ", "participant is empty"),
-    ("trial", "", "trial is empty"),
-    ("contact", 2, "contact must be 0 or 1, got 2"),
-    ("t", "1.2.3", "'1.2.3' is not a number"),
-])
+@pytest.mark.parametrize(
+    "column, value, what",
+    [
+        ("participant", " ", "participant is empty"),
+        ("trial", "", "trial is empty"),
+        ("contact", 2, "contact must be 0 or 1, got 2"),
+        ("t", "1.2.3", "'1.2.3' is not a number"),
+    ],
+)
 def test_a_bad_cell_is_named_by_file_line_and_column(tmp_path, column, value, what):
     """The whole place of a bad cell: the file, the physical line (data row 7 is line 9) and the column,
     in that order, then what is wrong (catches the file left out of the message)."""
@@ -315,11 +333,14 @@ def test_places_name_where_each_row_came_from():
         recordings_from_frame(df, "folder", places=places)
 
 
-@pytest.mark.parametrize("problem, what", [
-    ("ms", "time stamps look like milliseconds"),
-    ("mixed", "mixed sampling rates (6 trials at 64 Hz, 6 trials at 32 Hz)"),
-    ("mm", "positions look like millimetres or centimetres"),
-])
+@pytest.mark.parametrize(
+    "problem, what",
+    [
+        ("ms", "time stamps look like milliseconds"),
+        ("mixed", "mixed sampling rates (6 trials at 64 Hz, 6 trials at 32 Hz)"),
+        ("mm", "positions look like millimetres or centimetres"),
+    ],
+)
 def test_a_file_level_problem_names_the_file_first(tmp_path, problem, what):
     """Time in milliseconds, mixed rates, positions in millimetres: the message starts with the file."""
     df = cohort_frame(2, 6)
@@ -337,6 +358,7 @@ def test_a_file_level_problem_names_the_file_first(tmp_path, problem, what):
 
 
 # --- data: reasons of invalid trials name the right lines -------------------------------------------
+
 
 def read_spoiled(tmp_path, edit, trial="2") -> tuple[str, str]:
     """2 x 10 trials written with every digit; ``edit(df)`` spoils participant 1 trial 2 (file lines
@@ -357,26 +379,35 @@ def test_rows_of_a_trial_split_by_a_single_row_name_both_parts(tmp_path):
     """Trial 1/2 with its first 10 samples, one row of trial 1/3, then its other 30 samples: the message
     names the first line, the last line before the foreign row and the first line after it (a single
     foreign row is a step of 2 in the row numbers: catches ``> 2`` for ``> 1``)."""
+
     def edit(df):
         rows = df.index[(df.participant == "1") & (df.trial == "2")]
         other = df.index[(df.participant == "1") & (df.trial == "3")][0]
-        order = [*df.index[:rows[10]], other, *[i for i in df.index[rows[10]:] if i != other]]
+        order = [*df.index[: rows[10]], other, *[i for i in df.index[rows[10] :] if i != other]]
         return df.loc[order].reset_index(drop=True)
+
     assert read_spoiled(tmp_path, edit) == (
-        "invalid", f"rows not contiguous: line {FIRST} to {FIRST + 9} and from line {FIRST + 11} on belong to it, "
-                   f"with other rows between")
+        "invalid",
+        f"rows not contiguous: line {FIRST} to {FIRST + 9} and from line {FIRST + 11} on belong to it, "
+        f"with other rows between",
+    )
     # trial 1/3: its first row moved up to line FIRST + 10, the others after the 41 lines of trial 1/2
-    assert read_spoiled(tmp_path, edit, "3") == ("invalid", f"rows not contiguous: line {FIRST + 10} to "
-                                                            f"{FIRST + 10} and from line {FIRST + 41} on belong "
-                                                            f"to it, with other rows between")
+    assert read_spoiled(tmp_path, edit, "3") == (
+        "invalid",
+        f"rows not contiguous: line {FIRST + 10} to "
+        f"{FIRST + 10} and from line {FIRST + 41} on belong "
+        f"to it, with other rows between",
+    )
 
 
 def test_a_missing_time_stamp_names_its_first_line(tmp_path):
     """Time stamps missing at samples 6 and 9 of trial 1/2: the reason names sample 6's line."""
+
     def edit(df):
         rows = df.index[(df.participant == "1") & (df.trial == "2")]
         df.loc[rows[[6, 9]], "t"] = np.nan
         return df
+
     assert read_spoiled(tmp_path, edit) == ("invalid", f"time stamp missing at line {FIRST + 6}")
 
 
@@ -384,26 +415,34 @@ def test_time_going_backwards_names_the_sample_and_both_time_stamps(tmp_path):
     """A repeated time stamp at sample 5 and a step back at sample 12: going backwards is the reason (it
     is checked first), at sample 12's line, with its time stamp and the one before it (catches a repeat
     taken for a step back and the wrong neighbour in the message)."""
+
     def edit(df):
         rows = df.index[(df.participant == "1") & (df.trial == "2")]
         df.loc[rows[5], "t"] = df.loc[rows[4], "t"]
         df.loc[rows[12], "t"] = 0.125  # sample 11 is at 11/64 = 0.171875 s
         return df
+
     assert read_spoiled(tmp_path, edit) == (
-        "invalid", f"time goes backwards at line {FIRST + 12} (t = 0.125 s after 0.171875 s)")
+        "invalid",
+        f"time goes backwards at line {FIRST + 12} (t = 0.125 s after 0.171875 s)",
+    )
 
 
 # --- data: rates ------------------------------------------------------------------------------------
 
+
 def test_a_trial_at_another_rate_states_both_rates_and_intervals(tmp_path):
     """Trial 1/2 at half the rate: its rate and interval against the file's, in full."""
+
     def edit(df):
         rows = df.index[(df.participant == "1") & (df.trial == "2")]
         df.loc[rows, "t"] = np.arange(len(rows)) * 2 * DT
         return df
+
     assert read_spoiled(tmp_path, edit) == (
-        "invalid", f"sampled at {FS / 2:.1f} Hz, the file at {FS:.1f} Hz "
-                   f"(mean interval {2 * DT:.4f} s vs {DT:.4f} s)")
+        "invalid",
+        f"sampled at {FS / 2:.1f} Hz, the file at {FS:.1f} Hz (mean interval {2 * DT:.4f} s vs {DT:.4f} s)",
+    )
 
 
 def test_mixed_rates_name_the_four_most_common_rates_by_count():
@@ -420,8 +459,10 @@ def test_mixed_rates_name_the_four_most_common_rates_by_count():
             parts.append(tr)
     with pytest.raises(DataFormatError) as e:
         recordings_from_frame(pd.concat(parts, ignore_index=True))
-    assert str(e.value) == ("<DataFrame>: mixed sampling rates (5 trials at 64 Hz, 4 trials at 32 Hz, 3 trials at "
-                            "128 Hz, 2 trials at 59.9 Hz); split the file by rate or resample every trial to one rate")
+    assert str(e.value) == (
+        "<DataFrame>: mixed sampling rates (5 trials at 64 Hz, 4 trials at 32 Hz, 3 trials at "
+        "128 Hz, 2 trials at 59.9 Hz); split the file by rate or resample every trial to one rate"
+    )
 
 
 def test_time_stamps_exactly_at_the_slowest_rate_are_seconds():
@@ -429,8 +470,23 @@ def test_time_stamps_exactly_at_the_slowest_rate_are_seconds():
     differences are all the float 0.1): read as seconds at MIN_RATE_HZ (catches ``>=`` for ``>``)."""
     t = np.array([-0.2, -0.1, 0.0, 0.1, 0.2])
     assert (np.diff(t) == 1 / MIN_RATE_HZ).all()
-    df = pd.concat([pd.DataFrame({"participant": "1", "trial": str(k), "t": t, "x": 0.0, "y": 0.01 * np.arange(5),
-                                  "z": 0.0, "contact": [0, 0, 0, 1, 1]}) for k in range(3)], ignore_index=True)
+    df = pd.concat(
+        [
+            pd.DataFrame(
+                {
+                    "participant": "1",
+                    "trial": str(k),
+                    "t": t,
+                    "x": 0.0,
+                    "y": 0.01 * np.arange(5),
+                    "z": 0.0,
+                    "contact": [0, 0, 0, 1, 1],
+                }
+            )
+            for k in range(3)
+        ],
+        ignore_index=True,
+    )
     rec = recordings_from_frame(df)
     assert rec.fs == MIN_RATE_HZ and (rec.trials.status == "ok").all()
 
@@ -471,5 +527,7 @@ def test_a_capitalised_column_name_is_reported_with_the_columns_found_and_the_ca
     found = ", ".join(f.columns)
     with pytest.raises(DataFormatError) as e:
         recordings_from_frame(f, source="mine")
-    assert str(e.value) == (f"mine: required column 'participant' missing (found: {found}; expected: "
-                            f"{', '.join(COLUMNS)}); column names are lower case")
+    assert str(e.value) == (
+        f"mine: required column 'participant' missing (found: {found}; expected: "
+        f"{', '.join(COLUMNS)}); column names are lower case"
+    )

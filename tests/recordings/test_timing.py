@@ -8,6 +8,7 @@ parabola), linear interpolation for parts of 2 or 3 samples, a constant for a pa
 contact from the first grid time at or after the first contact sample. The time stamps sit on multiples of
 DT = 1/64 s (exact in binary), so grid times can coincide exactly with time stamps.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -15,12 +16,13 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from skilllib.recordings import MAX_QUOTE, quote
 from skilllib.recordings import (
+    MAX_QUOTE,
     MIN_RATE_HZ,
     TRIM,
     Irregularity,
     irregularity,
+    quote,
     regular_mean_interval,
     resample_uniform,
     time_unit_advice,
@@ -57,6 +59,7 @@ def on_grid(t_grid, t):
 
 # --- time_unit_advice ------------------------------------------------------------------------------
 
+
 def test_unit_advice_states_the_rate_in_seconds_and_in_the_unit():
     """A median step of 20 (milliseconds at 50 Hz): 1/20 = 0.05 Hz if t were in seconds, 1000/20 = 50 Hz in
     milliseconds (catches 1 * step or 2 / step for 1 / step in the first rate)."""
@@ -86,6 +89,7 @@ def test_unit_advice_for_a_step_too_long_for_any_unit():
 
 # --- Irregularity.describe -----------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("dropped, tail", [(0, ""), (1, ", 1 dropped frame"), (2, ", 2 dropped frames")])
 def test_describe_names_jitter_in_ms_and_dropped_frames_in_the_right_number(dropped, tail):
     """frame_jitter 0.475 of dt = 4 ms is 1.9 ms; one dropped frame is singular, two plural, none not said
@@ -98,8 +102,9 @@ def test_describe_rounds_the_jitter_to_two_digits_of_its_true_value():
     """1.949 ms is said as 1.9 ms: a factor slightly off 1000 (1.95 ms and more) would say 2."""
     jitter_ms = 1.949
     dt = 0.004
-    irr = Irregularity(max_jitter=jitter_ms / (1e3 * dt), dropped=0, max_interval=dt, at=1, dt=dt,
-                       frame_jitter=jitter_ms / (1e3 * dt))
+    irr = Irregularity(
+        max_jitter=jitter_ms / (1e3 * dt), dropped=0, max_interval=dt, at=1, dt=dt, frame_jitter=jitter_ms / (1e3 * dt)
+    )
     assert irr.describe() == "jitter up to 1.9 ms"
 
 
@@ -122,6 +127,7 @@ def test_a_dropped_frame_is_not_reported_as_jitter():
 
 
 # --- resample_uniform -------------------------------------------------------------------------------
+
 
 def parabola(t):
     """(N, 3) positions along a parabola (degree 2: a cubic spline reproduces it, a line does not)."""
@@ -271,8 +277,7 @@ def test_a_part_of_one_sample_is_that_sample():
 
 
 @settings(max_examples=30, deadline=None)
-@given(n=st.integers(6, 60), fs=st.sampled_from([60.0, 100.0, 120.0, 250.0]),
-       seed=st.integers(0, 2**16))
+@given(n=st.integers(6, 60), fs=st.sampled_from([60.0, 100.0, 120.0, 250.0]), seed=st.integers(0, 2**16))
 def test_float32_time_stamps_resample_as_their_float64_values(n, fs, seed):
     """Time stamps stored in float32 (as C3D files and some loggers store them) are resampled as the same
     values in float64: the grid length is counted in float64, where the margin of 1e-9 applies (counted
@@ -300,6 +305,7 @@ def test_float32_time_stamps_at_60_hz_keep_their_last_sample():
 
 # --- csvtable.quote -------------------------------------------------------------------------------
 
+
 def test_quote_keeps_a_cell_of_max_quote_characters_whole_and_cuts_one_more():
     """A cell of exactly MAX_QUOTE characters is quoted whole; one of MAX_QUOTE + 1 is cut to MAX_QUOTE
     with its length said (catches ``<`` for ``<=``)."""
@@ -310,6 +316,7 @@ def test_quote_keeps_a_cell_of_max_quote_characters_whole_and_cuts_one_more():
 
 
 # --- regular_mean_interval and irregularity ------------------------------------------------------
+
 
 def test_the_regular_interval_includes_intervals_exactly_at_the_trim_edge():
     """Intervals DT, DT, DT, 1.5 DT: the median DT, and 1.5 DT is exactly TRIM x DT away, inside the
@@ -348,4 +355,4 @@ def test_the_mean_shift_stops_after_twenty_steps():
     t = T0 + np.concatenate([[0.0], np.cumsum(np.array([1.0] * n_regular + rungs) * DT)])
     d = np.diff(t)
     assert np.median(d) == pytest.approx(DT, rel=1e-9)  # the mean shift starts at DT
-    assert regular_mean_interval(t) == np.mean(d[:n_regular + steps])
+    assert regular_mean_interval(t) == np.mean(d[: n_regular + steps])

@@ -1,4 +1,5 @@
 """Tests of skilllib.robot: Simple6 and the registry of arms."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -44,8 +45,12 @@ def test_spherical_wrist_joint_origins():
     np.testing.assert_allclose(np.linalg.norm(axes, axis=1), 1.0)
 
 
-EXPECTED_QD_LIMITS = {"simple6": [np.pi] * 6, "ur5": [np.pi] * 6, "puma560": [np.pi] * 6,  # 180 deg/s
-                      "panda": [2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61]}  # Franka datasheet
+EXPECTED_QD_LIMITS = {
+    "simple6": [np.pi] * 6,
+    "ur5": [np.pi] * 6,
+    "puma560": [np.pi] * 6,  # 180 deg/s
+    "panda": [2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61],
+}  # Franka datasheet
 
 
 @pytest.mark.parametrize("name", ROBOT_NAMES)

@@ -2,6 +2,7 @@
 independent computations: finite differences, roboticstoolbox's jacob0_dot, a hand-computed gravity
 torque, the potential energy's gradient, a closed-form root of the torque constraint, and a transfer of
 the time-scaled trajectory recomputed from scratch."""
+
 from __future__ import annotations
 
 import json
@@ -10,9 +11,22 @@ import numpy as np
 import pytest
 import roboticstoolbox as rtb
 
-from skilllib.robot import derivative, jacobian_dot, joint_accelerations, joint_dynamics
-from skilllib.robot import PUMA560_TAU_LIMITS, ROBOT_NAMES, dynamic_limits, get_robot, has_dynamics, simple6
-from skilllib.robot import EXP_TO_BASE, apply_time_scale, minimum_jerk_descent, transfer
+from skilllib.robot import (
+    EXP_TO_BASE,
+    PUMA560_TAU_LIMITS,
+    ROBOT_NAMES,
+    apply_time_scale,
+    derivative,
+    dynamic_limits,
+    get_robot,
+    has_dynamics,
+    jacobian_dot,
+    joint_accelerations,
+    joint_dynamics,
+    minimum_jerk_descent,
+    simple6,
+    transfer,
+)
 
 
 def _descent_acceleration(t: np.ndarray, amplitude: float, peak_speed: float) -> np.ndarray:
@@ -26,6 +40,7 @@ def _descent_acceleration(t: np.ndarray, amplitude: float, peak_speed: float) ->
 
 
 # --- the Jacobian's derivative and the accelerations ---------------------------------------------------
+
 
 @pytest.mark.parametrize("name", ROBOT_NAMES)
 def test_jacobian_dot_matches_finite_differences_and_roboticstoolbox(name):
@@ -72,8 +87,9 @@ def test_pseudo_inverse_derivative_of_the_redundant_panda():
         v, a = rng.uniform(-1, 1, 6), rng.uniform(-5, 5, 6)
         qd = np.linalg.pinv(ets.jacob0(q)) @ v
         h = 1e-6
-        fd = (np.linalg.pinv(ets.jacob0(q + h * qd)) @ (v + h * a)
-              - np.linalg.pinv(ets.jacob0(q - h * qd)) @ (v - h * a)) / (2 * h)
+        fd = (
+            np.linalg.pinv(ets.jacob0(q + h * qd)) @ (v + h * a) - np.linalg.pinv(ets.jacob0(q - h * qd)) @ (v - h * a)
+        ) / (2 * h)
         qdd = joint_accelerations(ets, q[None], qd[None], v[None], a[None])[0]
         np.testing.assert_allclose(qdd, fd, atol=1e-6)
         naive = np.linalg.pinv(ets.jacob0(q)) @ (a - jacobian_dot(ets, q, qd) @ qd)
@@ -96,12 +112,15 @@ def test_joint_dynamics_of_a_60_hz_recording_agrees_with_differentiating_qd():
 
 # --- torques --------------------------------------------------------------------------------------------
 
+
 def test_rne_gravity_torque_of_a_two_link_arm_by_hand():
     # two links in a vertical plane (joint axes horizontal), point masses at the link ends, arm horizontal:
     # tau1 = g (m1 l1 + m2 (l1 + l2)), tau2 = g m2 l2 (N m); at 30 deg up, times cos(30 deg)
     m1, m2, l1, l2, g = 2.0, 1.5, 0.5, 0.4, 9.81
-    links = [rtb.RevoluteDH(a=l1, m=m1, r=[0, 0, 0], I=np.zeros(6)),
-             rtb.RevoluteDH(a=l2, m=m2, r=[0, 0, 0], I=np.zeros(6))]
+    links = [
+        rtb.RevoluteDH(a=l1, m=m1, r=[0, 0, 0], I=np.zeros(6)),
+        rtb.RevoluteDH(a=l2, m=m2, r=[0, 0, 0], I=np.zeros(6)),
+    ]
     arm = rtb.DHRobot(links, name="two-link", gravity=[0, -g, 0])  # y up in the arm's plane (z the axes)
     for q1 in (0.0, np.pi / 6):
         tau = arm.rne([q1, 0.0], [0, 0], [0, 0])
@@ -140,6 +159,7 @@ def test_torque_is_gravity_friction_plus_speed_terms_not_a_power_of_s():
 
 
 # --- every limit and the time scale ----------------------------------------------------------------------
+
 
 def _quadratic_scale(d, lim: np.ndarray, s_min: float) -> float:
     """Independent smallest s >= s_min with |tau(s)| <= lim: per sample and joint tau = c0 + c1 x + c2 x^2
@@ -248,8 +268,15 @@ def test_summary_and_input_errors():
     with pytest.raises(ValueError, match="qdd_limits must be positive"):
         joint_dynamics(simple6(), r, qdd_limits=[1, 2, 3, 4, 5, -6])
     summary = joint_dynamics(simple6(), r, qdd_limits=2.0).summary()
-    assert set(summary) == {"peak_abs_qdd", "peak_abs_qddd", "peak_abs_tau", "time_scales", "time_scale",
-                            "binding_limit", "feasible"}
+    assert set(summary) == {
+        "peak_abs_qdd",
+        "peak_abs_qddd",
+        "peak_abs_tau",
+        "time_scales",
+        "time_scale",
+        "binding_limit",
+        "feasible",
+    }
     assert summary["peak_abs_tau"] is None and summary["time_scales"]["torque"] is None
     assert summary["binding_limit"] == "acceleration" and not summary["feasible"]
     assert summary["time_scale"] == pytest.approx(np.sqrt(max(summary["peak_abs_qdd"]) / 2.0))

@@ -1,5 +1,6 @@
 """Tests of skilllib.robot (the simulated execution of joint velocity commands) and of
 skilllib.robot (the assessment and results.json block built from it)."""
+
 from __future__ import annotations
 
 import json
@@ -8,12 +9,22 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from skilllib.robot import (
+    ACTUATOR_BANDWIDTH_HZ,
+    CONTROL_RATE_HZ,
+    assess,
+    assess_one,
+    dynamic_limits,
+    execute,
+    get_robot,
+    joint_dynamics,
+    minimum_jerk_descent,
+    resolve_limits,
+    simple6,
+    transfer,
+    transfer_block,
+)
 from skilllib.smoothness import sparc
-from skilllib.robot import joint_dynamics
-from skilllib.robot import ACTUATOR_BANDWIDTH_HZ, CONTROL_RATE_HZ, execute
-from skilllib.robot import assess, assess_one, resolve_limits, transfer_block
-from skilllib.robot import dynamic_limits, get_robot, simple6
-from skilllib.robot import minimum_jerk_descent, transfer
 
 
 @pytest.fixture(scope="module")
@@ -149,8 +160,14 @@ def test_dynamics_figures():
     assert {tuple(ln.get_ydata()) for ln in limits} == {(1, 1), (-1, -1)}  # the normalised limits
     fig = figures.plot_executed_speed(assessed)
     assert fig.axes[0].get_ylabel() == "tool speed (m/s)"
-    fig = figures.plot_time_scales({"Puma 560": dyns, "Simple6": [joint_dynamics(simple6(), transfer(
-        "simple6", *minimum_jerk_descent(0.2, 1.4)), qdd_limits=5.0)]})
+    fig = figures.plot_time_scales(
+        {
+            "Puma 560": dyns,
+            "Simple6": [
+                joint_dynamics(simple6(), transfer("simple6", *minimum_jerk_descent(0.2, 1.4)), qdd_limits=5.0)
+            ],
+        }
+    )
     assert fig.axes[0].get_ylabel() == "time scale s" and [ax.get_title() for ax in fig.axes] == ["Puma 560", "Simple6"]
     with pytest.raises(ValueError, match="dynamic parameters"):
         figures.plot_joint_torques([joint_dynamics(simple6(), transfer("simple6", *minimum_jerk_descent(0.2, 1.0)))])

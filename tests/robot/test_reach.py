@@ -1,14 +1,23 @@
 """Tests of skilllib.robot (the reach shell that decides "unreachable") against closed forms and
 random poses, and of the IK chain of skilllib.robot on a real failure of its first search."""
+
 from __future__ import annotations
 
 import numpy as np
 import pytest
 import roboticstoolbox as rtb
 
+from skilllib.robot import (
+    REACH_TOL_M,
+    ROBOT_NAMES,
+    get_robot,
+    joint_axes,
+    joint_origins,
+    reach_shell,
+    shoulder_point,
+    simple6,
+)
 from skilllib.robot import _ik as ik
-from skilllib.robot import ROBOT_NAMES, get_robot, joint_origins, simple6
-from skilllib.robot import REACH_TOL_M, joint_axes, reach_shell, shoulder_point
 
 
 def test_simple6_shell_is_zero_to_two_metres_around_the_origin():
@@ -63,8 +72,9 @@ def test_joint_axes_from_the_jacobian_are_the_dh_axes(name):
 def test_arm_without_a_shoulder_point_gets_the_loose_shell():
     # joints 1 and 2 parallel (alpha1 = 0): no shoulder point; the shell falls back to the base and the
     # sum of the link lengths
-    links = [rtb.RevoluteDH(a=0.3), rtb.RevoluteDH(a=0.3, alpha=np.pi / 2)] + \
-            [rtb.RevoluteDH(a=0.1, alpha=np.pi / 2) for _ in range(4)]
+    links = [rtb.RevoluteDH(a=0.3), rtb.RevoluteDH(a=0.3, alpha=np.pi / 2)] + [
+        rtb.RevoluteDH(a=0.1, alpha=np.pi / 2) for _ in range(4)
+    ]
     arm = rtb.DHRobot(links, name="Planar-ish")
     with pytest.raises(ValueError, match="parallel"):
         shoulder_point(arm.ets(), np.zeros(6))

@@ -1,5 +1,6 @@
 """Tests of skilllib.robot (IK, Jacobian, joint velocities, feasibility, time scaling) and of
 the transfer figures."""
+
 from __future__ import annotations
 
 import json
@@ -19,28 +20,39 @@ from scipy.integrate import cumulative_trapezoid  # noqa: E402
 from scipy.optimize import brentq  # noqa: E402
 from scipy.spatial.transform import Rotation  # noqa: E402
 
-from skilllib.robot import _velocity as tr
-from skilllib.robot import IK_CHAIN
-from skilllib.smoothness import sparc
-from skilllib.robot import ROBOT_NAMES, default_pose, get_robot, simple6
 from skilllib.robot import (
     BRANCH_JUMP_RAD,
     COND_THRESHOLD,
     EXP_TO_BASE,
+    IK_CHAIN,
     IK_RESIDUAL_TOL_M,
     IK_RESTARTS,
+    ROBOT_NAMES,
     SINGULAR_COND,
     TransferResult,
     apply_time_scale,
+    default_pose,
+    get_robot,
     minimum_jerk_descent,
+    simple6,
     time_scale_factor,
     to_base_frame,
     transfer,
     transfer_summary,
 )
+from skilllib.robot import _velocity as tr
+from skilllib.smoothness import sparc
 
-SUMMARY_KEYS = {"cluster", "peak_abs_qd", "min_abs_det_j", "max_cond_j", "ik_max_residual_m",
-                "feasible", "time_scale", "flags"}
+SUMMARY_KEYS = {
+    "cluster",
+    "peak_abs_qd",
+    "min_abs_det_j",
+    "max_cond_j",
+    "ik_max_residual_m",
+    "feasible",
+    "time_scale",
+    "flags",
+}
 
 
 def _fd_jacobian(robot, q: np.ndarray, h: float = 1e-6) -> np.ndarray:
@@ -59,6 +71,7 @@ def _fd_jacobian(robot, q: np.ndarray, h: float = 1e-6) -> np.ndarray:
 
 # --- the paper's check at the default pose -----------------------------------------------------
 
+
 def test_default_pose_jacobian_inverse():
     robot, q = simple6(), default_pose()
     J = robot.ets().jacob0(q)
@@ -76,6 +89,7 @@ def test_default_pose_through_transfer():
 
 
 # --- Jacobian and IK cross-checks --------------------------------------------------------------
+
 
 @pytest.mark.parametrize("name", ROBOT_NAMES)
 def test_jacobian_matches_finite_differences(name):
@@ -142,6 +156,7 @@ def test_panda_uses_minimum_norm_pseudo_inverse():
 
 # --- frames ------------------------------------------------------------------------------------
 
+
 def test_exp_to_base_is_a_proper_rotation():
     R = EXP_TO_BASE
     np.testing.assert_allclose(R @ R.T, np.eye(3))
@@ -157,6 +172,7 @@ def test_to_base_frame_rejects_improper_rotation():
 
 
 # --- feasibility and time scaling --------------------------------------------------------------
+
 
 def test_time_scale_factor():
     assert time_scale_factor([1.0, 2.0], 4.0) == 1.0
@@ -220,6 +236,7 @@ def test_apply_time_scale_rejects_bad_factor():
 
 
 # --- flags: unreachable, ill-conditioned, singular ---------------------------------------------
+
 
 def test_unreachable_path_is_flagged_not_silent():
     t, p, v = minimum_jerk_descent(2.9, 1.0)  # 2 m down from Simple6's tool: beyond its 2 m reach
@@ -317,6 +334,7 @@ def _patch_ik(monkeypatch, answer=None) -> list[dict]:
                 sol = IKSolution(q=np.asarray(q, dtype=float), success=True, reason="fake")
             calls.append({"solver": name, "q0": np.array(q0, dtype=float), **kw, "sol": sol})
             return sol
+
         return fake
 
     for name in _REAL_SOLVERS:
@@ -337,13 +355,19 @@ def test_branch_jump_flagged_above_threshold_not_below():
             np.testing.assert_allclose(r.q[1], q0 + d * _E23, atol=1e-7)  # IK stayed on the branch
             step = np.max(np.abs(r.q[1] - r.q[0]))
             assert (step > BRANCH_JUMP_RAD) == jump  # the constructed step is on the intended side
-            assert r.flags == ([{"sample": 1, "reason": f"ik_branch_jump: joints move {step:.3g} rad in one sample"}]
-                               if jump else [])
+            assert r.flags == (
+                [{"sample": 1, "reason": f"ik_branch_jump: joints move {step:.3g} rad in one sample"}] if jump else []
+            )
             assert np.all(np.isfinite(r.qd))  # a jump is flagged, the sample still computed
     # steps of 0.6 BRANCH_JUMP_RAD: never flagged although the pose drifts 1.2 from q0 (the step is taken
     # from the previous sample); one jump of 1.2 is flagged once, the sample after it (no motion) is not
-    qs = [q0, q0 + 0.6 * BRANCH_JUMP_RAD * _E23, q0 + 1.2 * BRANCH_JUMP_RAD * _E23,
-          q0 + 2.4 * BRANCH_JUMP_RAD * _E23, q0 + 2.4 * BRANCH_JUMP_RAD * _E23]
+    qs = [
+        q0,
+        q0 + 0.6 * BRANCH_JUMP_RAD * _E23,
+        q0 + 1.2 * BRANCH_JUMP_RAD * _E23,
+        q0 + 2.4 * BRANCH_JUMP_RAD * _E23,
+        q0 + 2.4 * BRANCH_JUMP_RAD * _E23,
+    ]
     r = transfer(simple6(), *_path_through(ets, qs), q0=q0, qd_limits=np.pi)
     np.testing.assert_allclose(r.q, qs, atol=1e-7)
     assert [(f["sample"], f["reason"].split(":")[0]) for f in r.flags] == [(3, "ik_branch_jump")]
@@ -403,9 +427,12 @@ def test_ik_residual_tolerance_edge(monkeypatch):
             np.testing.assert_array_equal(r.q[0], q_bad)
         else:
             # every search of the chain was tried and rejected: seeded LM, then the restarting searches
-            assert [(c["solver"], c["slimit"], c["seed"], c.get("method"), c.get("pinv")) for c in calls] == \
-                [("ikine_LM", 1, None, None, None), ("ikine_LM", IK_RESTARTS + 1, 0, None, None),
-                 ("ikine_GN", IK_RESTARTS + 1, 0, None, True), ("ikine_LM", IK_RESTARTS + 1, 0, "sugihara", None)]
+            assert [(c["solver"], c["slimit"], c["seed"], c.get("method"), c.get("pinv")) for c in calls] == [
+                ("ikine_LM", 1, None, None, None),
+                ("ikine_LM", IK_RESTARTS + 1, 0, None, None),
+                ("ikine_GN", IK_RESTARTS + 1, 0, None, True),
+                ("ikine_LM", IK_RESTARTS + 1, 0, "sugihara", None),
+            ]
             assert _reasons(r, 0) == ["ik_failed"] and f"{dp:.3g} m" in r.flags[0]["reason"]
             assert np.all(np.isnan(r.q[0])) and np.all(np.isnan(r.qd[0]))
 
@@ -469,8 +496,10 @@ def test_out_of_reach_is_unreachable_without_a_search(monkeypatch):
     p = np.array([[0, 0, 0], [0, -2.5, 0], [0, -2.5, 0], [0, 0, 0], [0, -2.5, 0]], dtype=float)
     r = transfer("simple6", np.arange(5) / 60, p, np.zeros((5, 3)))
     assert [f["sample"] for f in r.flags] == [1, 2, 4]
-    assert all(f["reason"] == "unreachable: the target lies 2.693 m from the shoulder; the arm reaches 0 to 2 m"
-               for f in r.flags)
+    assert all(
+        f["reason"] == "unreachable: the target lies 2.693 m from the shoulder; the arm reaches 0 to 2 m"
+        for f in r.flags
+    )
     assert [(c["solver"], c["slimit"]) for c in calls] == [("ikine_LM", 1), ("ikine_LM", 1)]  # samples 0 and 3
     for c in calls:  # every search starts from the last solved pose (q0)
         np.testing.assert_array_equal(c["q0"], default_pose())
@@ -595,9 +624,19 @@ def test_ik_solution_outside_the_joint_limits_is_not_accepted():
 def _result_with_qd(qd, qd_limits, flags=()) -> TransferResult:
     qd = np.asarray(qd, dtype=float)
     N, n = qd.shape
-    return TransferResult(robot="test", q0=np.zeros(n), qd_limits=np.asarray(qd_limits, dtype=float),
-                          t=np.arange(N) / 60.0, x_base=np.zeros((N, 3)), q=np.zeros((N, n)), qd=qd,
-                          det_j=np.ones(N), cond_j=np.ones(N), ik_residual_m=np.zeros(N), flags=list(flags))
+    return TransferResult(
+        robot="test",
+        q0=np.zeros(n),
+        qd_limits=np.asarray(qd_limits, dtype=float),
+        t=np.arange(N) / 60.0,
+        x_base=np.zeros((N, 3)),
+        q=np.zeros((N, n)),
+        qd=qd,
+        det_j=np.ones(N),
+        cond_j=np.ones(N),
+        ik_residual_m=np.zeros(N),
+        flags=list(flags),
+    )
 
 
 def test_within_limits_edges_and_feasibility():
@@ -620,6 +659,7 @@ def test_within_limits_edges_and_feasibility():
 
 
 # --- results.json contract and input checks ----------------------------------------------------
+
 
 def test_summary_contract():
     results = []
@@ -674,6 +714,7 @@ def test_minimum_jerk_descent():
 
 # --- figures ------------------------------------------------------------------------------------
 
+
 def test_transfer_figures():
     from skilllib import figures
 
@@ -725,8 +766,8 @@ def test_result_is_a_dataclass_with_per_sample_arrays():
 
 
 def test_time_scaled_features_divide_pv_and_keep_sparc_with_the_scaled_cut_off():
-    from skilllib.smoothness import minimum_jerk_speed
     from skilllib.robot import time_scaled_features
+    from skilllib.smoothness import minimum_jerk_speed
 
     t = np.arange(0, 0.5, 1 / 60)
     v = minimum_jerk_speed(t, T=0.6, D=0.2)  # cut before the end: non-zero speed at contact

@@ -3,6 +3,7 @@ the time stretch of a trajectory that does not start at t = 0, the resampled fea
 profile, the sampling and argument checks of the synthetic minimum-jerk prototype, and the text of an IK
 failure. Expected values come from the definitions in the docstrings (t -> t0 + s (t - t0), v -> v / s;
 s(tau) = A (10 tau^3 - 15 tau^4 + 6 tau^5), T = 1.875 A / peak speed), computed here with numpy."""
+
 from __future__ import annotations
 
 import math
@@ -12,26 +13,29 @@ import pytest
 from roboticstoolbox.robot.IK import IKSolution
 from scipy.spatial.transform import Rotation
 
-from skilllib.robot import _ik as ik
-from skilllib.robot import _velocity as tr
-from skilllib.smoothness import sparc
-from skilllib.robot import IK_CHAIN, IKAnswer, pose_residual, solve_ik
-from skilllib.robot import default_pose, simple6
-from skilllib.robot import reach_shell
-from skilllib.smoothness import DEFAULT_FC
 from skilllib.robot import (
     BRANCH_JUMP_RAD,
+    IK_CHAIN,
     JOINT_LIMIT_TOL_RAD,
     QD_LIMIT_RTOL,
+    IKAnswer,
     TransferResult,
     apply_time_scale,
+    default_pose,
     minimum_jerk_descent,
+    pose_residual,
+    reach_shell,
+    simple6,
+    solve_ik,
     time_scale_factor,
     time_scaled_features,
     to_base_frame,
     transfer,
     transfer_summary,
 )
+from skilllib.robot import _ik as ik
+from skilllib.robot import _velocity as tr
+from skilllib.smoothness import DEFAULT_FC, sparc
 
 #: The minimum-jerk peak speed is this factor times A / T (Flash & Hogan 1985).
 MJ_PEAK_FACTOR = 1.875
@@ -111,6 +115,7 @@ def test_time_scale_rejects_mismatched_lengths_naming_both():
 
 # --- time_scaled_features -----------------------------------------------------------------------
 
+
 def _truncated_speed() -> np.ndarray:
     """Speed (m/s) of a minimum-jerk descent cut at 70 % of its amplitude: non-zero at contact, so its
     SPARC depends on the cut-off."""
@@ -145,8 +150,14 @@ def test_time_scaled_features_cut_offs():
     v = _truncated_speed()
     s, fc = 2, DEFAULT_FC / 2
     m = time_scaled_features(v, FS, s, fc=fc)
-    assert set(m) == {"pv", "sparc_fc_scaled", "n_resampled", "pv_resampled", "sparc_resampled_fc_scaled",
-                      "sparc_resampled_fixed_fc"}
+    assert set(m) == {
+        "pv",
+        "sparc_fc_scaled",
+        "n_resampled",
+        "pv_resampled",
+        "sparc_resampled_fc_scaled",
+        "sparc_resampled_fixed_fc",
+    }
     assert m["pv"] == pytest.approx(v.max() / s, rel=1e-12)
     assert m["sparc_fc_scaled"] == pytest.approx(sparc(v, FS, fc=fc), abs=1e-12)
     v_r = _resampled(v, s)
@@ -239,9 +250,20 @@ GOOD = {"amplitude": A_M, "peak_speed": PEAK, "fs": FS, "fraction": 0.7}
 DESCENT_MESSAGE = "amplitude (m), peak_speed (m/s), fs (Hz) must be positive and 0 < fraction <= 1"
 
 
-@pytest.mark.parametrize("name,bad", [("amplitude", 0.0), ("amplitude", -0.1), ("peak_speed", 0.0),
-                                      ("peak_speed", -1.0), ("fs", 0.0), ("fs", -60.0), ("fraction", 0.0),
-                                      ("fraction", -0.5), ("fraction", 1.5)])
+@pytest.mark.parametrize(
+    "name,bad",
+    [
+        ("amplitude", 0.0),
+        ("amplitude", -0.1),
+        ("peak_speed", 0.0),
+        ("peak_speed", -1.0),
+        ("fs", 0.0),
+        ("fs", -60.0),
+        ("fraction", 0.0),
+        ("fraction", -0.5),
+        ("fraction", 1.5),
+    ],
+)
 def test_descent_rejects_each_bad_argument(name, bad):
     """Each argument alone out of its range is an error with the documented message. Catches: conditions
     joined with ``and`` (one bad argument slips through), strict/non-strict comparisons swapped, the bound
@@ -261,6 +283,7 @@ def test_descent_accepts_a_low_sampling_rate(fs):
 
 # --- IKAnswer.why -------------------------------------------------------------------------------
 
+
 def test_ik_why_lists_the_joints_outside_their_limits():
     """The flag text of a rejected IK attempt: both residuals, then the 1-based joints outside their
     limits, comma-separated. Catches: the joint list replacing the residuals, missing or garbled."""
@@ -273,6 +296,7 @@ def test_ik_why_lists_the_joints_outside_their_limits():
 
 
 # --- pose_residual ------------------------------------------------------------------------------
+
 
 def test_orientation_residual_of_a_half_turn_is_pi_not_nan():
     """A tool turned by pi about any axis has orientation residual pi. The cosine (trace - 1) / 2 is then -1,
@@ -362,10 +386,12 @@ def test_solve_ik_asks_each_search_for_a_joint_limit_aware_solution():
     target = ets.eval(q0)
     solve_ik(ets, target, q0, k, tol=TOL, joint_tol=JOINT_TOL, restarts=restarts)
     common = {"tol": IK_SOLVER_TOL, "ilimit": IK_ITERATION_LIMIT, "joint_limits": True}
-    want = [("ikine_LM", {**common, "slimit": 1, "seed": None}),
-            ("ikine_LM", {**common, "slimit": restarts + 1, "seed": k}),
-            ("ikine_GN", {**common, "slimit": restarts + 1, "seed": k, "pinv": True}),
-            ("ikine_LM", {**common, "slimit": restarts + 1, "seed": k, "method": "sugihara"})]
+    want = [
+        ("ikine_LM", {**common, "slimit": 1, "seed": None}),
+        ("ikine_LM", {**common, "slimit": restarts + 1, "seed": k}),
+        ("ikine_GN", {**common, "slimit": restarts + 1, "seed": k, "pinv": True}),
+        ("ikine_LM", {**common, "slimit": restarts + 1, "seed": k, "method": "sugihara"}),
+    ]
     assert [(m, {key: v for key, v in kw.items() if key != "q0"}) for m, kw in ets.calls] == want
     for _, kw in ets.calls:
         np.testing.assert_array_equal(kw["q0"], q0)
@@ -402,8 +428,12 @@ def test_solve_ik_failure_returns_the_best_attempt():
     numbered from 0 or 2."""
     q0 = default_pose()
     wrapped = np.array([2 * np.pi, 0, 0, 0, 0, -2 * np.pi])  # q1 and q6 one turn out: beyond +-pi
-    attempts = [q0 + _e23(_d_for(3e-3)), q0 + _e23(_d_for(1e-3)) + wrapped + 2e-3 * _E6,
-                np.full(6, np.nan), q0 + _e23(_d_for(2e-3))]
+    attempts = [
+        q0 + _e23(_d_for(3e-3)),
+        q0 + _e23(_d_for(1e-3)) + wrapped + 2e-3 * _E6,
+        np.full(6, np.nan),
+        q0 + _e23(_d_for(2e-3)),
+    ]
     ets = _ScriptedETS(lambda i: attempts[i])
     target = ets.eval(q0)
     ans = solve_ik(ets, target, q0, 0, tol=TOL, joint_tol=JOINT_TOL)
@@ -472,6 +502,7 @@ def test_solve_ik_joint_limit_edge(joint, side):
 
 
 # --- transfer: start pose and limits of a named arm --------------------------------------------------
+
 
 def test_named_arm_takes_a_given_start_pose():
     """A q0 given with an arm's name replaces the arm's default start pose. Catches: the given q0
@@ -582,8 +613,9 @@ def test_a_step_of_exactly_the_branch_threshold_is_not_a_jump(monkeypatch):
     q0 = default_pose()
     assert q0[0] == 0.0  # so q1 moves by exactly BRANCH_JUMP_RAD
     q1 = q0 + BRANCH_JUMP_RAD * np.eye(6)[0]
-    monkeypatch.setattr(tr, "solve_ik", lambda ets, target, seed_q, k, **kw:
-                        IKAnswer(q0 if k == 0 else q1, 0.0, True, "scripted", 0.0))
+    monkeypatch.setattr(
+        tr, "solve_ik", lambda ets, target, seed_q, k, **kw: IKAnswer(q0 if k == 0 else q1, 0.0, True, "scripted", 0.0)
+    )
     r = transfer("simple6", [0.0, 1 / FS], np.zeros((2, 3)), np.zeros((2, 3)))
     assert np.max(np.abs(r.q[1] - r.q[0])) == BRANCH_JUMP_RAD
     assert r.flags == []
@@ -607,6 +639,7 @@ def test_samples_after_a_singular_one_are_computed():
 
 
 # --- time_scale_factor and to_base_frame edges ---------------------------------------------------------
+
 
 def test_time_scale_factor_edges_match_within_limits():
     """s = 1 (no stretch) whenever the peak is within the limit's relative tolerance, also exactly at
@@ -665,6 +698,7 @@ def test_to_base_frame_accepts_a_rotation_with_det_rounded_below_one():
 
 # --- transfer: input checks --------------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("t,shape", [(np.zeros((2, 1)), "(2, 1)"), (np.zeros(0), "(0,)")])
 def test_times_must_be_a_non_empty_vector(t, shape):
     """t of more than one dimension, or empty, is rejected with a message naming its shape. Catches: only
@@ -693,13 +727,23 @@ def test_two_samples_at_the_same_time_are_rejected():
 
 # --- transfer_summary ----------------------------------------------------------------------------------------
 
+
 def _result(robot: str = "Simple6", q0=None) -> TransferResult:
     """A one-sample result (nothing computed) of ``robot`` from start pose q0 (rad), for the summary block."""
     q0 = default_pose() if q0 is None else np.asarray(q0, dtype=float)
     nan6 = np.full((1, 6), np.nan)
-    return TransferResult(robot=robot, q0=q0, qd_limits=np.full(6, np.pi), t=np.zeros(1), x_base=np.zeros((1, 3)),
-                          q=nan6, qd=nan6, det_j=np.full(1, np.nan), cond_j=np.full(1, np.nan),
-                          ik_residual_m=np.full(1, np.nan))
+    return TransferResult(
+        robot=robot,
+        q0=q0,
+        qd_limits=np.full(6, np.pi),
+        t=np.zeros(1),
+        x_base=np.zeros((1, 3)),
+        q=nan6,
+        qd=nan6,
+        det_j=np.full(1, np.nan),
+        cond_j=np.full(1, np.nan),
+        ik_residual_m=np.full(1, np.nan),
+    )
 
 
 def test_transfer_summary_needs_results_of_one_arm_and_pose():

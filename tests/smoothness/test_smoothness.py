@@ -3,6 +3,7 @@
 The oracle is monalysa 0.2.1 (Balasubramanian's package): ``sparc`` must agree with it to 1e-9 on every
 input it accepts and raise ValueError where it fails; ``sparc_many`` must give ``sparc``'s values.
 """
+
 from __future__ import annotations
 
 import inspect
@@ -18,9 +19,9 @@ from monalysa.quality.smoothness import log_dimensionless_jerk as ldlj_authors
 from monalysa.quality.smoothness import sparc as sparc_authors
 
 import skilllib
-from skilllib.smoothness import _spectral, _measures as smoothness
 from skilllib.smoothness import (
     SPARC_PARAMS,
+    _spectral,
     ldlj,
     ldlj_many,
     minimum_jerk_speed,
@@ -30,6 +31,7 @@ from skilllib.smoothness import (
     sparc_many,
     sparc_spectrum,
 )
+from skilllib.smoothness import _measures as smoothness
 
 TOL = 1e-9
 FAST = settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -51,6 +53,7 @@ def well_conditioned(v, fs, fc=smoothness.DEFAULT_FC, amp_th=0.05, padlevel=4) -
 
 
 # --- profiles of every kind the oracle must agree on ---------------------------------------------
+
 
 def profile(kind: str, rng: np.random.Generator, fs: float) -> np.ndarray:
     """A speed profile (m/s) at ``fs`` Hz: bell, overlapping submovements, noisy, cut at contact,
@@ -75,8 +78,15 @@ def profile(kind: str, rng: np.random.Generator, fs: float) -> np.ndarray:
 
 
 KINDS = ["bell", "submovements", "noisy", "truncated", "single"]
-PARAMS = [{}, {"fc": 20.0}, {"fc": 5.0, "amp_th": 0.1}, {"amp_th": 0.01}, {"padlevel": 2},
-          {"padlevel": 6, "fc": 3.0}, {"padlevel": 0}]
+PARAMS = [
+    {},
+    {"fc": 20.0},
+    {"fc": 5.0, "amp_th": 0.1},
+    {"amp_th": 0.01},
+    {"padlevel": 2},
+    {"padlevel": 6, "fc": 3.0},
+    {"padlevel": 0},
+]
 
 
 @pytest.mark.parametrize("fs", [60.0, 100.0, 250.0, 13.7])
@@ -95,17 +105,20 @@ def test_agrees_with_the_authors_code(kind, kw, fs):
     assert np.max(np.abs(sparc_many(vs, fs, **kw) - ref)) < TOL
 
 
-speeds = hnp.arrays(np.float64, st.integers(1, 300),
-                    elements=st.floats(0, 100, allow_subnormal=False))
-signed = hnp.arrays(np.float64, st.integers(1, 300),
-                    elements=st.floats(-100, 100, allow_subnormal=False))
+speeds = hnp.arrays(np.float64, st.integers(1, 300), elements=st.floats(0, 100, allow_subnormal=False))
+signed = hnp.arrays(np.float64, st.integers(1, 300), elements=st.floats(-100, 100, allow_subnormal=False))
 any_fs = st.floats(1.0, 2000.0)
 nonneg = hnp.arrays(np.float64, st.integers(2, 200), elements=st.floats(0, 10, allow_subnormal=False))
 
 
 @FAST
-@given(v=st.one_of(speeds, signed), fs=any_fs, fc=st.floats(0.0, 100.0),
-       amp_th=st.floats(-0.1, 1.2), padlevel=st.integers(-2, 7))
+@given(
+    v=st.one_of(speeds, signed),
+    fs=any_fs,
+    fc=st.floats(0.0, 100.0),
+    amp_th=st.floats(-0.1, 1.2),
+    padlevel=st.integers(-2, 7),
+)
 def test_agrees_with_the_authors_code_or_raises_valueerror(v, fs, fc, amp_th, padlevel):
     kw = {"fc": fc, "amp_th": amp_th, "padlevel": padlevel}
     if fc > fs / 2:  # refused (as is a bad profile): the authors' code would read the mirror image
@@ -123,8 +136,13 @@ def test_agrees_with_the_authors_code_or_raises_valueerror(v, fs, fc, amp_th, pa
 
 
 @FAST
-@given(vs=st.lists(st.one_of(speeds, signed), min_size=1, max_size=12), fs=any_fs,
-       fc=st.floats(0.5, 60.0), amp_th=st.floats(0.005, 0.6), padlevel=st.integers(0, 6))
+@given(
+    vs=st.lists(st.one_of(speeds, signed), min_size=1, max_size=12),
+    fs=any_fs,
+    fc=st.floats(0.5, 60.0),
+    amp_th=st.floats(0.005, 0.6),
+    padlevel=st.integers(0, 6),
+)
 def test_sparc_many_equals_sparc(vs, fs, fc, amp_th, padlevel):
     kw = {"fc": fc, "amp_th": amp_th, "padlevel": padlevel}
     assume(all(np.any(v) for v in vs))
@@ -166,6 +184,7 @@ def test_direct_dft_and_fft_give_the_same_power(monkeypatch):
 
 # --- how the band ended: sparc_bands and the capped flag -------------------------------------------
 
+
 def authors_band_end(v, fs, **kw) -> float:
     """Last frequency (Hz) of the band in the authors' code (``sparc(...)[2][0][-1]``)."""
     with warnings.catch_warnings(), np.errstate(all="ignore"):
@@ -174,8 +193,13 @@ def authors_band_end(v, fs, **kw) -> float:
 
 
 @FAST
-@given(vs=st.lists(speeds, min_size=1, max_size=8), fs=st.floats(20.0, 500.0),
-       fc_share=st.floats(0.02, 0.98), amp_th=st.floats(0.01, 0.5), padlevel=st.integers(2, 6))
+@given(
+    vs=st.lists(speeds, min_size=1, max_size=8),
+    fs=st.floats(20.0, 500.0),
+    fc_share=st.floats(0.02, 0.98),
+    amp_th=st.floats(0.01, 0.5),
+    padlevel=st.integers(2, 6),
+)
 def test_capped_means_a_higher_fc_would_lengthen_the_band(vs, fs, fc_share, amp_th, padlevel):
     """``capped`` is checked against the authors' code run with fc at the Nyquist frequency: their band
     then ends above our fc exactly when ours was capped. ``band_end_hz`` is their band end at our fc."""
@@ -209,8 +233,12 @@ def test_fc_at_nyquist_never_caps_and_above_it_is_refused():
     v = np.abs(np.random.default_rng(5).normal(size=50)) + 0.1  # noise: the spectrum stays high
     assert sparc_bands([v], 60.0, fc=29.0).capped[0]
     assert not sparc_bands([v], 60.0, fc=30.0).capped[0] and not sparc_spectrum(v, 60.0, fc=30.0).capped
-    for fn in (sparc, sparc_spectrum, lambda v, fs, fc: sparc_many([v], fs, fc=fc),
-               lambda v, fs, fc: sparc_bands([v], fs, fc=fc)):
+    for fn in (
+        sparc,
+        sparc_spectrum,
+        lambda v, fs, fc: sparc_many([v], fs, fc=fc),
+        lambda v, fs, fc: sparc_bands([v], fs, fc=fc),
+    ):
         with pytest.raises(ValueError, match=r"fc = 30.5 Hz lies above the Nyquist frequency 30 Hz"):
             fn(v, 60.0, fc=30.5)
     with pytest.raises(ValueError, match="Nyquist frequency 15 Hz"):
@@ -232,6 +260,7 @@ def test_sparc_is_at_most_minus_the_straight_line_across_its_band(v, fs, amp_th,
 
 # --- published values ----------------------------------------------------------------------------
 
+
 def test_published_values():
     t = np.arange(-1, 1, 0.01)
     gauss = np.exp(-5 * t**2)
@@ -245,7 +274,6 @@ def test_published_values():
 # --- invariances ---------------------------------------------------------------------------------
 
 
-
 @FAST
 @given(v=nonneg, scale=st.floats(1e-3, 1e3), j=st.integers(-20, 20))
 def test_amplitude_invariance(v, scale, j):
@@ -257,8 +285,13 @@ def test_amplitude_invariance(v, scale, j):
 
 
 @FAST
-@given(v=st.one_of(speeds, signed), fs=any_fs, fc=st.floats(0.5, 50), amp_th=st.floats(0.001, 0.9),
-       padlevel=st.integers(0, 7))
+@given(
+    v=st.one_of(speeds, signed),
+    fs=any_fs,
+    fc=st.floats(0.5, 50),
+    amp_th=st.floats(0.001, 0.9),
+    padlevel=st.integers(0, 7),
+)
 def test_sparc_is_at_most_minus_one_or_zero_for_a_one_bin_band(v, fs, fc, amp_th, padlevel):
     """Inputs outside SPARC's domain (fc above Nyquist, a profile at rest: both tested in
     test_bad_*) are assumed away, not silently passed; a signed profile whose spectrum stays below
@@ -366,12 +399,12 @@ def test_sparc_many_is_batched(monkeypatch):
 
 def test_submovements_drifting_apart_lower_sparc():
     t = np.arange(0, 3, 1 / 60)
-    s = [sparc(minimum_jerk_speed(t[:, None], [0, d], 0.6, 0.2).sum(axis=1), 60.0)
-         for d in (0.0, 0.2, 0.4, 0.6, 0.8)]
+    s = [sparc(minimum_jerk_speed(t[:, None], [0, d], 0.6, 0.2).sum(axis=1), 60.0) for d in (0.0, 0.2, 0.4, 0.6, 0.8)]
     assert np.all(np.diff(s) < 0)
 
 
 # --- the spectrum companion ----------------------------------------------------------------------
+
 
 def test_spectrum_companion():
     v = minimum_jerk_speed(np.arange(0, 0.8, 1 / 60), 0, 1.0)  # cut at contact, 80 % of the way
@@ -417,9 +450,9 @@ def test_minimum_jerk_speed():
 
 # --- LDLJ ----------------------------------------------------------------------------------------
 
+
 @FAST
-@given(v=hnp.arrays(np.float64, st.integers(3, 300), elements=st.floats(0, 10, allow_subnormal=False)),
-       fs=any_fs)
+@given(v=hnp.arrays(np.float64, st.integers(3, 300), elements=st.floats(0, 10, allow_subnormal=False)), fs=any_fs)
 def test_ldlj_agrees_with_the_authors_code(v, fs):
     assume(np.any(v) and np.any(np.diff(v, 2)))
     with np.errstate(all="ignore"):
@@ -447,8 +480,14 @@ def test_ldlj_collapses_with_noise_sparc_does_not():
 
 # --- bad input -----------------------------------------------------------------------------------
 
-BAD = [([], "empty"), ([0.1, np.nan], "NaN"), ([0.1, np.inf], "infinite"), (np.ones((3, 2)), "1-D"),
-       (np.zeros(5), "zero everywhere"), (["a", "b"], "numbers")]
+BAD = [
+    ([], "empty"),
+    ([0.1, np.nan], "NaN"),
+    ([0.1, np.inf], "infinite"),
+    (np.ones((3, 2)), "1-D"),
+    (np.zeros(5), "zero everywhere"),
+    (["a", "b"], "numbers"),
+]
 
 
 @pytest.mark.parametrize("v, words", BAD)
@@ -500,7 +539,9 @@ def test_minimum_jerk_segment_runs_from_onset_to_contact_in_n_samples(n, ratio):
     v = smoothness.minimum_jerk_segment(n, ratio, 60.0)
     assert v.size == n and v[0] == pytest.approx(0.05) and v.max() <= 1.0
     T = n / 60.0 / (((1 + np.sqrt(1 - np.sqrt(ratio))) - (1 - np.sqrt(1 - np.sqrt(0.05)))) / 2)
-    full = minimum_jerk_speed(np.arange(-1, n + 1) / 60.0 + (1 - np.sqrt(1 - np.sqrt(0.05))) / 2 * T, 0, T, 1 / 1.875 * T)
+    full = minimum_jerk_speed(
+        np.arange(-1, n + 1) / 60.0 + (1 - np.sqrt(1 - np.sqrt(0.05))) / 2 * T, 0, T, 1 / 1.875 * T
+    )
     np.testing.assert_allclose(v, full[1:-1], atol=1e-12)  # the same bell, peak 1
     assert full[0] < 0.05 and full[-1] == pytest.approx(ratio) and v[-1] > ratio  # onset and contact samples
     if n >= 100:
@@ -513,8 +554,10 @@ def test_a_profiles_sparc_does_not_depend_on_the_other_profiles_of_the_batch():
     random subset, all). Catches a batch padded to its longest profile or a BLAS product whose rounding
     depends on the number of rows."""
     rng = np.random.default_rng(3)
-    vs = [minimum_jerk_speed(np.arange(n) / 60.0, 0, n / 60.0 / 0.8) * (1 + 0.05 * rng.random(n))
-          for n in rng.integers(12, 140, 400)]
+    vs = [
+        minimum_jerk_speed(np.arange(n) / 60.0, 0, n / 60.0 / 0.8) * (1 + 0.05 * rng.random(n))
+        for n in rng.integers(12, 140, 400)
+    ]
     full = sparc_bands(vs, 60.0)
     idx = np.sort(rng.choice(len(vs), 60, replace=False))
     part = sparc_bands([vs[i] for i in idx], 60.0)

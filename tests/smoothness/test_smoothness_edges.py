@@ -5,6 +5,7 @@ reference profiles' defaults and argument checks.
 Each test says which wrong behaviour it catches; expected values come from the definitions (by hand,
 numpy's FFT) or from the SPARC authors' package monalysa, never from skilllib's own output.
 """
+
 from __future__ import annotations
 
 import warnings
@@ -41,6 +42,7 @@ def capped_by_definition(v: np.ndarray, fs: float, fc: float, amp_th: float, pad
 
 # --- SPARC: a one-bin band, the capped flag -------------------------------------------------------
 
+
 def test_a_one_bin_band_gives_plus_zero_as_the_authors():
     """A band of a single bin has an empty arc: SPARC 0, the authors' value (an empty sum). Catches a
     negative zero, which results.json and every table would print as "-0.0"."""
@@ -48,8 +50,12 @@ def test_a_one_bin_band_gives_plus_zero_as_the_authors():
         warnings.simplefilter("ignore")
         theirs = sparc_authors(np.array([0.3]), 1000.0, fc=20.0)[0]
     assert theirs == 0 and not np.signbit(theirs)
-    values = [sparc([0.3], 1000.0), sparc_spectrum([0.3], 1000.0).sparc, sparc_many([[0.3]], 1000.0)[0],
-              sparc_bands([[0.3]], 1000.0).sparc[0]]
+    values = [
+        sparc([0.3], 1000.0),
+        sparc_spectrum([0.3], 1000.0).sparc,
+        sparc_many([[0.3]], 1000.0)[0],
+        sparc_bands([[0.3]], 1000.0).sparc[0],
+    ]
     assert [repr(float(x)) for x in values] == ["0.0"] * 4
 
 
@@ -71,8 +77,7 @@ def test_capped_is_the_definition_on_varied_profiles(fc):
     that counts bins beyond Nyquist or misses the last one."""
     rng = np.random.default_rng(11)
     bell = minimum_jerk_speed(np.arange(0, 1, 1 / FS))
-    vs = [np.abs(rng.normal(size=4)) + 0.1, np.abs(rng.normal(size=50)) + 0.1, bell, bell[:40],
-          rng.normal(size=33)]
+    vs = [np.abs(rng.normal(size=4)) + 0.1, np.abs(rng.normal(size=50)) + 0.1, bell, bell[:40], rng.normal(size=33)]
     for amp_th in (0.05, 0.2):
         expected = [capped_by_definition(v, FS, fc, amp_th) for v in vs]
         assert [sparc_spectrum(v, FS, fc=fc, amp_th=amp_th).capped for v in vs] == expected
@@ -82,7 +87,7 @@ def test_capped_is_the_definition_on_varied_profiles(fc):
 
 
 def test_a_bin_exactly_at_amp_th_above_fc_caps_the_band():
-    """"Reaches amp_th" is >=, as the authors' band (Mf >= amp_th): a single sample's spectrum is exactly
+    """ "Reaches amp_th" is >=, as the authors' band (Mf >= amp_th): a single sample's spectrum is exactly
     1 at every bin, so with amp_th = 1 every bin above fc reaches it. Catches a strict comparison."""
     v = np.array([1.0])
     assert capped_by_definition(v, FS, 10.0, 1.0)
@@ -105,11 +110,12 @@ def test_spectrum_records_its_parameters():
 
 # --- LDLJ ------------------------------------------------------------------------------------------
 
+
 def by_hand_ldlj(v: np.ndarray) -> float:
     """-ln(N**3 sum (second difference of v / v_peak)**2): the authors' -ln |DLJ| with duration N dt,
     jerk (second difference) / dt**2 and the integral a sum times dt; the powers of dt cancel."""
     d2 = np.diff(np.asarray(v, dtype=float) / np.max(np.abs(v)), 2)
-    return float(-np.log(v.size ** 3 * np.sum(d2 ** 2)))
+    return float(-np.log(v.size**3 * np.sum(d2**2)))
 
 
 def test_ldlj_does_not_depend_on_fs_and_never_overflows():
@@ -129,7 +135,7 @@ def test_ldlj_many_of_a_very_long_profile():
     integers (wrapping around to a wrong or negative value) rather than in floats."""
     t = np.arange(2_200_000) / 1000.0
     v = 1.5 + np.sin(t)
-    assert 2_200_000 ** 3 > np.iinfo(np.int64).max
+    assert 2_200_000**3 > np.iinfo(np.int64).max
     assert ldlj_many([v], 1000.0)[0] == pytest.approx(by_hand_ldlj(v), rel=1e-9)
     assert ldlj(v, 1000.0) == pytest.approx(by_hand_ldlj(v), rel=1e-9)
 
@@ -166,6 +172,7 @@ def test_many_of_no_profiles_is_empty():
 
 # --- reference profiles ----------------------------------------------------------------------------
 
+
 def test_minimum_jerk_speed_defaults_are_one_metre_in_one_second():
     """Defaults D = 1 m, T = 1 s, t0 = 0: v = 30 tau**2 (1 - tau)**2, peak 1.875 m/s at 0.5 s and
     30 (1/16)(9/16) = 1.0546875 m/s at 0.25 s (Flash & Hogan 1985). Catches another default amplitude
@@ -185,16 +192,29 @@ def test_minimum_jerk_speed_takes_time_stamps_in_double_precision():
     np.testing.assert_array_equal(minimum_jerk_speed(np.arange(5), 0, 4), minimum_jerk_speed(np.arange(5.0), 0, 4))
 
 
-@pytest.mark.parametrize("n, contact, onset", [
-    (0, 0.5, 0.05), (-3, 0.5, 0.05),  # no samples
-    (10, 0.5, 0.0), (10, 0.5, 1.0), (10, 0.5, 1.5), (10, 0.5, -0.1),  # onset ratio outside (0, 1)
-    (10, 0.0, 0.05), (10, 1.0, 0.05), (10, 1.5, 0.05), (10, -0.2, 0.05),  # contact ratio outside (0, 1)
-])
+@pytest.mark.parametrize(
+    "n, contact, onset",
+    [
+        (0, 0.5, 0.05),
+        (-3, 0.5, 0.05),  # no samples
+        (10, 0.5, 0.0),
+        (10, 0.5, 1.0),
+        (10, 0.5, 1.5),
+        (10, 0.5, -0.1),  # onset ratio outside (0, 1)
+        (10, 0.0, 0.05),
+        (10, 1.0, 0.05),
+        (10, 1.5, 0.05),
+        (10, -0.2, 0.05),  # contact ratio outside (0, 1)
+    ],
+)
 def test_minimum_jerk_segment_refuses_what_has_no_onset_or_contact(n, contact, onset):
     """Ratios of the peak must lie strictly inside (0, 1) (0 has no onset time, 1 is the peak itself,
     above 1 never happens) and n >= 1. Catches a bound taken inclusively or an 'or' read as 'and'."""
-    with pytest.raises(ValueError, match=rf"need n >= 1 and ratios in \(0, 1\); got n = {n}, "
-                                         rf"onset_ratio = {onset}, contact_ratio = {contact}$"):
+    with pytest.raises(
+        ValueError,
+        match=rf"need n >= 1 and ratios in \(0, 1\); got n = {n}, "
+        rf"onset_ratio = {onset}, contact_ratio = {contact}$",
+    ):
         minimum_jerk_segment(n, contact, FS, onset_ratio=onset)
 
 
@@ -203,7 +223,6 @@ def test_minimum_jerk_segment_of_one_sample_is_the_onset():
     refused."""
     assert minimum_jerk_segment(1, 0.5, FS).tolist() == [pytest.approx(0.05, abs=1e-15)]
     assert minimum_jerk_segment(1, 0.5, FS, onset_ratio=0.2).tolist() == [pytest.approx(0.2, abs=1e-15)]
-
 
 
 @pytest.mark.parametrize("amp_th", [0.0, -0.1])
@@ -215,7 +234,7 @@ def test_a_threshold_at_or_below_zero_keeps_the_whole_band_as_the_authors(amp_th
     theirs = sparc_authors(v, FS, padlevel=4, fc=10.0, amp_th=amp_th)[0]
     assert sparc(v, FS, fc=10.0, amp_th=amp_th) == pytest.approx(theirs, abs=1e-9)
     assert sparc_many([v], FS, fc=10.0, amp_th=amp_th)[0] == pytest.approx(theirs, abs=1e-9)
-    df = FS / 2 ** 10  # Hz: the bin spacing, n_fft = 2 ** (ceil(log2(61)) + 4) = 1024
+    df = FS / 2**10  # Hz: the bin spacing, n_fft = 2 ** (ceil(log2(61)) + 4) = 1024
     assert 10.0 - df < sparc_bands([v], FS, fc=10.0, amp_th=amp_th).band_end_hz[0] <= 10.0  # the last bin up to fc
 
 
