@@ -29,7 +29,7 @@
 #
 # ```{note}
 # Every speed profile in this chapter is synthetic, generated here from minimum-jerk submovements (and,
-# where said, noise). One section also reads the book's synthetic cohort (chapter 2), which stands in
+# where said, noise). One section also reads the book's synthetic cohort (chapter 3), which stands in
 # for the paper's unpublished recordings. Every number the text states is checked by a hidden cell of
 # the notebook, so the book does not build when a statement stops being true.
 # ```
@@ -523,7 +523,7 @@ assert np.allclose(b10.sparc, b20.sparc, atol=1e-12), "text: both settings give 
 #
 # The experiment's segments are different. They run from movement onset to a contact that cuts the
 # movement at a sizeable fraction of its peak speed, and at 60 Hz they are short: the synthetic cohort's
-# segments (chapter 2) hold the numbers of samples printed at the end of this section. A short profile has
+# segments (chapter 3) hold the numbers of samples printed at the end of this section. A short profile has
 # a wide spectrum: $N$ samples over $T = N/f_s$ seconds resolve it only every $1/T$ Hz, and a band up to
 # $f_c$ holds only about $f_c T$ independent spectral values (4 below 20 Hz for a 0.2 s segment). The cut
 # at contact adds side lobes that decay slowly. Such a spectrum can still reach the threshold at 10 Hz,
@@ -622,8 +622,8 @@ assert cap[:, 1].max() > threshold_bound() + 0.1, "text: capped bands can rise a
 # %% [markdown]
 # ### On the book's cohort
 #
-# The synthetic cohort of chapter 2 has segments of exactly this kind. Computed with both settings, its
-# trials' bands end as follows (chapter 3 repeats the whole clustering with both settings):
+# The synthetic cohort of chapter 3 has segments of exactly this kind. Computed with both settings, its
+# trials' bands end as follows (chapter 4 repeats the whole clustering with both settings):
 
 # %%
 COHORT = skilllib.datasets.cohort_path()  # the book's synthetic cohort, shipped with skilllib
@@ -658,7 +658,7 @@ assert sel_n.max() <= 30, "text: the selected segments are short"
 # On the cohort's short segments the 10 Hz cap ends the band of most selected trials, and more than a
 # hundred trials score above the line only a capped band can cross; with 20 Hz the cap ends a minority
 # of bands. At 10 Hz SPARC also follows the segment's duration much more closely (correlation printed
-# above). Chapter 2 shows what SPARC measures on these data.
+# above). Chapter 3 shows what SPARC measures on these data.
 #
 # ### Noise
 #

@@ -87,7 +87,7 @@ def _parser() -> argparse.ArgumentParser:
         required=True,
         help="folder for results.json and the figures (replaced as a whole when the run ends)",
     )
-    g = r.add_argument_group("reading other formats (chapter 5)")
+    g = r.add_argument_group("reading other formats (chapter 7)")
     g.add_argument(
         "--columns",
         type=_columns,
@@ -191,7 +191,7 @@ def _parser() -> argparse.ArgumentParser:
         nargs="+",
         metavar="SETTING",
         help="compare the run with other SPARC settings, each like fc=10 or fc=10,amp_th=0.1 "
-        "(results.json sparc_sensitivity; chapter 3)",
+        "(results.json sparc_sensitivity; chapter 4)",
     )
     g = r.add_argument_group("large corpora on a Dask cluster (README: At scale)")
     g.add_argument(

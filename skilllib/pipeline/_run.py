@@ -378,7 +378,7 @@ def compute(
         result.messages.append(
             f"{no_rest} of {len(features)} trials are invalid with 'no rest before onset': either the recordings "
             f"start after the movement began, or the position noise is so large that its derivative exceeds the "
-            f"{ONSET_SPEED:g} m/s onset speed; then try {hint} (chapter 5)"
+            f"{ONSET_SPEED:g} m/s onset speed; then try {hint} (chapter 7)"
         )
     if lowpass.cutoff_hz is not None:
         result.messages.append(filter_message(selected, lowpass))
@@ -472,7 +472,7 @@ def capped_message(selected: pd.DataFrame, params: Mapping[str, float]) -> str:
     return (
         f"{n} of {len(selected)} selected trials have their SPARC band ended by fc = {params['fc']:g} Hz rather "
         f"than by the amplitude threshold {params['amp_th']:g} (sparc_capped): their SPARC depends on fc "
-        f"(compare settings with --sensitivity, chapter 3)"
+        f"(compare settings with --sensitivity, chapter 4)"
     )
 
 
@@ -482,7 +482,7 @@ def filter_message(selected: pd.DataFrame, lowpass: Lowpass) -> str:
     return (
         f"positions were low-pass filtered at {lowpass.cutoff_hz:.3g} Hz ({lowpass.chosen_by}; zero-lag "
         f"Butterworth, filter in results.json); SPARC's band reaches above that cut-off in {beyond} of "
-        f"{len(selected)} selected trials, whose SPARC is partly the filter's (chapter 5)"
+        f"{len(selected)} selected trials, whose SPARC is partly the filter's (chapter 7)"
     )
 
 

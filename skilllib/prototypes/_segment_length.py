@@ -6,7 +6,7 @@ segments are different: they run from onset to a contact that cuts the movement 
 they hold only one or a few dozen samples. A segment of T seconds resolves its spectrum only every
 1/T Hz, so a band up to f_c holds about f_c T independent spectral values (a 0.2 s segment: 4 below
 20 Hz), and the cut at contact spreads the spectrum over many of them; short segments therefore reach
-the cap f_c more often, and their SPARC tracks their length (chapters 1-3 show it on the cohort).
+the cap f_c more often, and their SPARC tracks their length (chapters 1-4 show it on the cohort).
 
 The functions here measure that dependence and offer ways to look past it:
 

@@ -18,7 +18,7 @@ why such values are not comparable with the others.
 
 The book's maximum cut-off is 20 Hz, the KI 2020 paper's "0 to 20 Hz" and the default of the SPARC
 authors' MATLAB code (``SpectralArcLength``, parameters [0.05, 20, 4]); their Python code defaults to
-10 Hz. On the book's short segments (a few tens of samples at 60 Hz) 10 Hz caps most bands (chapter 3
+10 Hz. On the book's short segments (a few tens of samples at 60 Hz) 10 Hz caps most bands (chapter 4
 measures it), which is why the book uses 20 Hz; pass ``fc=10.0`` for the Python authors' setting.
 """
 

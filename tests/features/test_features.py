@@ -234,7 +234,7 @@ def test_window_edges_are_inclusive_and_the_next_float_out_is_excluded():
 
 def test_paper_and_documented_constants():
     """The paper's selection (0.3-0.7 m/s) and onset threshold (0.05 m/s), and the values the module
-    docstring and chapter 2 state (a 2/60 s differentiating span, segments of at least 5 samples):
+    docstring and chapter 3 state (a 2/60 s differentiating span, segments of at least 5 samples):
     the threshold tests use the constants, so only this catches a changed value."""
     assert CONTACT_WINDOW == (0.3, 0.7) and ONSET_SPEED == 0.05
     assert DIFF_SPAN_S == 2 / 60 and MIN_SEGMENT_SAMPLES == 5

@@ -202,7 +202,7 @@ def summary_table() -> pd.DataFrame:
 
 
 def test_participant_summary_columns_are_named_for_the_reader(summary_table):
-    """The table's headers, in order (shown in the book's chapter 2). Catches a changed name."""
+    """The table's headers, in order (shown in the book's chapter 3). Catches a changed name."""
     s = participant_summary(summary_table)
     want = ["valid trials", "selected"]
     for name in SUMMARY_FEATURES.values():

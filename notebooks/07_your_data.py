@@ -210,7 +210,7 @@ assert ONSET_SPEED == 0.05, "text: 'the 0.05 m/s onset threshold'"
 assert 0.65 < noise_rest / ONSET_SPEED < 0.85, "text: 'about three quarters of the 0.05 m/s onset threshold'"
 
 # %% [markdown]
-# skilllib therefore differentiates over a window of fixed *duration* (chapter 2), which is three samples
+# skilllib therefore differentiates over a window of fixed *duration* (chapter 3), which is three samples
 # at 60 Hz and more at higher rates. The table gives the window at each rate, the share of invalid
 # trials and the median features of the same generator recorded at several rates:
 
@@ -394,7 +394,7 @@ axes[1].title.set_fontsize(9)
 # So with recordings this noisy: filter (the default does), trust PV, and read SPARC as a coarse
 # ranking that the filter has shaped, or record with less noise where smoothness is the question. The
 # cut-off is an option: `--lowpass 10` and the table above tell what a higher one keeps and costs on
-# your data; compare runs with `--sensitivity` for SPARC's own parameters (chapter 3).
+# your data; compare runs with `--sensitivity` for SPARC's own parameters (chapter 4).
 
 # %% [markdown]
 # ## An example file
@@ -436,7 +436,7 @@ assert check.fs > CohortModel().fs == 60, "text: 'at a higher sampling rate than
 # SPARC's parameters have options too: `--fc HZ` (the maximum cut-off frequency, default 20 Hz, the
 # paper's 0–20 Hz band), `--amp-th` (the amplitude threshold, default 0.05) and `--padlevel` (the zero
 # padding, default 4); `--sensitivity fc=10 ...` compares the run with other settings
-# (`sparc_sensitivity` in results.json). Chapter 3 explains them; `--help` lists every option.
+# (`sparc_sensitivity` in results.json). Chapter 4 explains them; `--help` lists every option.
 #
 # `--out` names a folder that the run **replaces as a whole** when it has finished: it writes into a
 # fresh folder beside it and then swaps it in, so figures of an earlier run never sit beside new
@@ -496,7 +496,7 @@ assert n_capped / status["selected"] < 0.1, "text: 'fc decides the SPARC of only
 # adapting: k = 6 is silhouette-valid for these data. On Simple6 all six prototypes stay within the
 # joint *velocity* limits (the paper's question), the fastest joint under half its limit of 3.14 rad/s;
 # but none is feasible as recorded: the acceleration limit (5 rad/s², the book's assumption for
-# Simple6, chapter 4) binds for every one, and each would have to be slowed by x1.2 to x1.9, as the
+# Simple6, chapter 5) binds for every one, and each would have to be slowed by x1.2 to x1.9, as the
 # summary's `feasibility` line says (0 of 6). The one `note:` line counts the
 # selected trials whose SPARC band was ended by fc = 20 Hz rather than by the amplitude threshold
 # (`sparc_capped`): 4 of the 78 selected trials, so fc decides the SPARC of only a few trials here.
@@ -596,21 +596,21 @@ assert stems == FIGURES, "text: the table of figure files (all but sparc_sensiti
 # %% [markdown]
 # | file | shows | explained in |
 # |---|---|---|
-# | `trials_by_participant` | height y and speed of every valid trial against time from contact, per participant (the paper's Fig. 1b) | chapter 2 |
-# | `participant_features` | PV, contact speed, duration and SPARC per participant | chapter 2 |
-# | `features` | the contact-speed histogram with the selection window; PV against SPARC, bands ended by fc ringed | chapter 2 |
+# | `trials_by_participant` | height y and speed of every valid trial against time from contact, per participant (the paper's Fig. 1b) | chapter 3 |
+# | `participant_features` | PV, contact speed, duration and SPARC per participant | chapter 3 |
+# | `features` | the contact-speed histogram with the selection window; PV against SPARC, bands ended by fc ringed | chapter 3 |
 # | `sparc_vs_length` | SPARC of every valid trial against its segment length, bands ended by fc ringed; the share of such bands at each length | chapter 1 |
-# | `silhouette_sweep` | average silhouette for every k, valid k filled | chapter 3 |
-# | `silhouettes_k` | the silhouette of every trial at the k used | chapter 3 |
-# | `clusters_pv_sparc` | clusters, centres and prototypes in the PV-SPARC plane (the paper's Fig. 2a) | chapter 3 |
-# | `prototype_speed_profiles` | the speed profile of every prototype (the paper's Fig. 2b) | chapter 3 |
-# | `joint_velocities` | the robot's joint velocities for every prototype, with the limits (the paper's Fig. 4) | chapter 4 |
-# | `frame_mapping` | where the fastest prototype's path lies in the robot's workspace | chapter 4 |
-# | `joint_accelerations` | the robot's joint accelerations for every prototype, with the limits | chapter 4 |
-# | `joint_torques` | only on an arm with dynamic parameters (`ur5`, `puma560`, `panda`): every joint's torque over its limit | chapter 4 |
-# | `executed_speed` | the prototype's tool speed against the simulated execution, as recorded and slowed by its time scale | chapter 4 |
-# | `time_scales` | the time scale each limit asks for and the one of every limit, with the binding limit | chapter 4 |
-# | `sparc_sensitivity` | only with `--sensitivity`: each selected trial's SPARC under the other settings against this run's; the silhouette sweep under every setting | chapter 3 |
+# | `silhouette_sweep` | average silhouette for every k, valid k filled | chapter 4 |
+# | `silhouettes_k` | the silhouette of every trial at the k used | chapter 4 |
+# | `clusters_pv_sparc` | clusters, centres and prototypes in the PV-SPARC plane (the paper's Fig. 2a) | chapter 4 |
+# | `prototype_speed_profiles` | the speed profile of every prototype (the paper's Fig. 2b) | chapter 4 |
+# | `joint_velocities` | the robot's joint velocities for every prototype, with the limits (the paper's Fig. 4) | chapter 5 |
+# | `frame_mapping` | where the fastest prototype's path lies in the robot's workspace | chapter 5 |
+# | `joint_accelerations` | the robot's joint accelerations for every prototype, with the limits | chapter 5 |
+# | `joint_torques` | only on an arm with dynamic parameters (`ur5`, `puma560`, `panda`): every joint's torque over its limit | chapter 5 |
+# | `executed_speed` | the prototype's tool speed against the simulated execution, as recorded and slowed by its time scale | chapter 5 |
+# | `time_scales` | the time scale each limit asks for and the one of every limit, with the binding limit | chapter 5 |
+# | `sparc_sensitivity` | only with `--sensitivity`: each selected trial's SPARC under the other settings against this run's; the silhouette sweep under every setting | chapter 4 |
 #
 # Look at `trials_by_participant` first: it shows at once whether the export is right (y should fall
 # to the contact surface and stay there; speed should rise from rest and end at contact). For the
@@ -675,7 +675,7 @@ pd.DataFrame(rows).set_index("--robot")
 # slower it must be executed for them (`time_scale`, the stretch for every limit, is at least that):
 # every joint velocity divides by that factor, and so does the prototype's peak speed. Its
 # SPARC stays the same as long as the amplitude threshold, not fc, ends its band (`sparc_capped` false;
-# chapter 4). Here is the UR5 with slower base, shoulder and elbow joints (q1–q3) than wrist joints
+# chapter 5). Here is the UR5 with slower base, shoulder and elbow joints (q1–q3) than wrist joints
 # (q4–q6):
 
 # %%
@@ -722,7 +722,7 @@ assert [bool(capped[k]) for k in proto_ur5] == proto_capped and sum(proto_capped
 #
 # An arm the command does not know can be used from Python: `skilllib.robot.transfer(robot, t,
 # positions, velocities, q0=..., qd_limits=...)` takes any roboticstoolbox arm with at least six
-# joints, a start pose inside its joint limits and its velocity limits (chapter 4 shows how the start
+# joints, a start pose inside its joint limits and its velocity limits (chapter 5 shows how the start
 # poses above were chosen).
 #
 # ## When the input is broken

@@ -74,7 +74,7 @@ print(f"{len(sel)} selected trials of {len(feats)}, from {sel['participant'].nun
 # chapter explains why it is at most $-1$ and why a movement cut at contact lies well below that).
 # K-means will measure Euclidean distances in this plane as it is, so it matters how far the points
 # spread along each axis: PV's standard deviation (row `std`) is nearly three times SPARC's. SPARC is
-# computed with the book's $f_c$ = 20 Hz; chapter 2 showed that on these short segments it ranks trials
+# computed with the book's $f_c$ = 20 Hz; chapter 3 showed that on these short segments it ranks trials
 # mainly by how abruptly the contact ends them and by their length, and that the cap still ends the band
 # of some of them (`sparc_capped`, counted below).
 
@@ -226,7 +226,7 @@ assert (gaps["sparc"] > 0).all() and round(X[:, 1].std(), 2) == 0.09, "text: SPA
 # its contact speed and its distance from the centre: a prototype stands for its cluster only as well
 # as it lies near the centre, and a small, scattered cluster can have its centre where no trial is.
 # Here every prototype lies within 0.03 of its centre in the (PV, SPARC) plane. One of them, the slowest
-# cluster's, has a SPARC band ended by the 20 Hz cap: its SPARC depends on $f_c$ (chapter 4 comes back to
+# cluster's, has a SPARC band ended by the 20 Hz cap: its SPARC depends on $f_c$ (chapter 5 comes back to
 # this when the robot slows a prototype down).
 
 # %%
@@ -658,7 +658,7 @@ plot_clusters(ward);
 # follow at the human's pace. With more clusters the fastest cluster tends to hold fewer, more extreme
 # trials. For $k$ = 4, 6 and 8 the table gives the PV range the prototypes span and the Simple6 joint
 # velocities of the fastest prototype, computed by [`skilllib.robot.transfer`](#skilllib.robot.transfer) at the paper's pose
-# (chapter 4 explains the transfer), against the book's limit of $\pi$ rad/s per joint.
+# (chapter 5 explains the transfer), against the book's limit of $\pi$ rad/s per joint.
 
 # %%
 rows = {}
@@ -701,7 +701,7 @@ assert by_k["smallest cluster"].is_monotonic_decreasing, "text: the smallest clu
 # %% [markdown]
 # ## Segment length and the clusters
 #
-# Chapter 2 showed that on these segments SPARC follows how abruptly the contact ends a trial (the
+# Chapter 3 showed that on these segments SPARC follows how abruptly the contact ends a trial (the
 # contact ratio, contact speed over PV) and the segment's length more than the generator's corrective
 # submovements. Does that shape the clusters? [`skilllib.prototypes.adjusted_sparc`](#skilllib.prototypes.adjusted_sparc) removes from SPARC the
 # part that a linear fit on log duration and contact ratio predicts across the selected trials, keeping

@@ -60,7 +60,7 @@ table = trial_features(rec)
 # %% [markdown]
 # ## The same table without a loop per trial
 #
-# Chapters 2 and 3 segment one trial at a time with
+# Chapters 3 and 4 segment one trial at a time with
 # [`segment_arrays`](#skilllib.features.segment_arrays): the derivative of the approach, the onset,
 # the segment. That remains the definition. For many trials
 # [`skilllib.features`](#skilllib.features.segment_many) gathers the trials whose approaches have the same
@@ -254,7 +254,7 @@ assert (workers.set_index("trials")["wall_s"] > runs[(runs["mode"] == "inmemory"
 # ## Summary
 #
 # - The features of every trial are computed in blocks of trials of equal length, with the same bits as
-#   the per-trial definitions of chapters 2 and 3 (a test compares them on the cohort and on trials that
+#   the per-trial definitions of chapters 3 and 4 (a test compares them on the cohort and on trials that
 #   fail in every way). SPARC of a profile does not depend on the other profiles computed with it.
 # - Silhouettes are exact up to 5,000 selected trials. Beyond that they are the mean of 10 stratified
 #   subsamples with its spread, seeded by `--seed`, and `results.json` says which.

@@ -178,7 +178,7 @@ cohort.model_table()
 # scaled the features, nor how many restarts or which seed it used. The book clusters the **raw** (PV in
 # m/s, SPARC) tuples of the selected trials, since the paper mentions no scaling, with `n_init=10`
 # (scikit-learn's default when the paper was written) and `random_state=0` (the book's choice), via
-# [`skilllib.prototypes.silhouette_sweep`](#skilllib.prototypes.silhouette_sweep); chapter 3 shows what these choices change. A clustering is
+# [`skilllib.prototypes.silhouette_sweep`](#skilllib.prototypes.silhouette_sweep); chapter 4 shows what these choices change. A clustering is
 # "valid" when its average silhouette is positive and every cluster has at least one trial above the
 # average (scikit-learn's silhouette example, which the paper cites [@sklearnsilhouette]). The table's last column says whether each target is met;
 # the per-$k$ averages follow it.
@@ -298,7 +298,7 @@ fig = figures.plot_participant_features(feats)
 # quadratic fitted over a window of fixed duration, 2/60 s). At the experiment's 60 Hz that window is
 # three samples and the derivative is the second-order finite difference (central inside, three-point
 # one-sided at the ends); at higher rates the window keeps its duration, so the speed noise does not grow
-# with the rate (chapter 5 shows why that matters). Its norm is the speed. Only the samples *before* contact are
+# with the rate (chapter 7 shows why that matters). Its norm is the speed. Only the samples *before* contact are
 # used: the impact is a velocity discontinuity, and a difference across it would mix the approach with
 # the rest on the surface. No low-pass filter is applied. White position noise of standard deviation
 # $\sigma$ = 0.03 mm (the device's resolution) becomes, through the central difference
