@@ -69,8 +69,8 @@ bench: venv
 # forked test processes can hang on thread pools the parent started. mutmut's configuration is in
 # pyproject.toml; the mutants judged equivalent are in tests/mutation_equivalent.toml.
 # `make mutation`: every mutant (about 4,700; many hours on two cores).
-# `make mutation-sample`: the systematic 10 % sample of README "Mutation testing", every mutant whose
-# number ends in 7 (about 450; about an hour on two cores).
+# `make mutation-sample`: the systematic 10 % sample (benchmarks/README.md "Mutation testing"), every
+# mutant whose number ends in 7 (about 450; about an hour on two cores).
 SAMPLE = skilllib.*__mutmut_*7
 MUTMUT = OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 $(BIN)/mutmut run --max-children 2
 mutation: venv

@@ -1,7 +1,7 @@
 """Mutation score per module, from the results of `mutmut run` (run `make mutation` or
 `make mutation-sample`, not this directly).
 
-    .venv/bin/python scripts/mutation_report.py              # the table of README "Mutation testing"
+    .venv/bin/python scripts/mutation_report.py              # the table of benchmarks/README.md "Mutation testing"
     .venv/bin/python scripts/mutation_report.py --survivors  # also every checked mutant that is not killed
     .venv/bin/python scripts/mutation_report.py --only 'skilllib.*__mutmut_*7'  # the sample only
 
@@ -69,9 +69,9 @@ def wilson(k: int, n: int, z: float = Z95) -> tuple[float, float]:
 
 
 def table(results: dict[str, str], equivalent: dict[str, str], population: dict[str, str] | None = None) -> list[str]:
-    """The Markdown table of README "Mutation testing", one row per module and one for all. ``mutants``
-    counts the mutants of ``population`` (default: ``results``; all of mutmut's mutants when ``results``
-    is a sample of them), ``checked`` those of ``results`` that were run."""
+    """The Markdown table of benchmarks/README.md "Mutation testing", one row per sub-package and one for
+    all. ``mutants`` counts the mutants of ``population`` (default: ``results``; all of mutmut's mutants
+    when ``results`` is a sample of them), ``checked`` those of ``results`` that were run."""
     rows = collections.defaultdict(collections.Counter)
     for name in population if population is not None else results:
         rows[module_of(name)]["mutants"] += 1

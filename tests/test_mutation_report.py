@@ -1,4 +1,4 @@
-"""scripts/mutation_report.py, the table of README "Mutation testing": the score counts what it says, and
+"""scripts/mutation_report.py, the table of benchmarks/README.md "Mutation testing": the score counts what it says, and
 the interval of a sampled score is the Wilson interval (checked against scipy's)."""
 
 from __future__ import annotations

@@ -49,3 +49,34 @@ def test_every_chapter_is_in_the_table_of_contents():
     toc = (ROOT / "myst.yml").read_text()
     for ipynb in IPYNBS:
         assert f"notebooks/{ipynb.name}" in toc, f"{ipynb.name} is not listed in myst.yml"
+
+
+CODE_COLUMN = 88  #: characters: the site's code column (notebooks/ruff.toml formats to it)
+FRONT_DOOR = {"import skilllib as sk", "import skilllib.figures as skf"}
+
+
+@pytest.mark.parametrize("script", SCRIPTS, ids=lambda p: p.name)
+def test_code_lines_fit_the_sites_column(script: Path):
+    """Every line of a code cell fits the site's code column (cell options such as ``#| caption:`` are
+    not shown as code and may be longer); a long line would scroll sideways on the page."""
+    long = [
+        f"cell {i}: {line[:60]}..."
+        for i, cell in enumerate(jupytext.read(script).cells)
+        if cell.cell_type == "code"
+        for line in cell.source.splitlines()
+        if len(line) > CODE_COLUMN and not line.startswith("#|")
+    ]
+    assert not long, f"{script.name}: {len(long)} code lines over {CODE_COLUMN} characters: {long[:5]}"
+
+
+@pytest.mark.parametrize("script", SCRIPTS, ids=lambda p: p.name)
+def test_chapters_import_skilllib_through_the_front_door(script: Path):
+    """A chapter reaches the library as ``sk`` (and its figures as ``skf``), never by a module path."""
+    imports = [
+        line.strip()
+        for cell in jupytext.read(script).cells
+        if cell.cell_type == "code"
+        for line in cell.source.splitlines()
+        if "skilllib" in line and line.strip().startswith(("import ", "from "))
+    ]
+    assert imports and set(imports) <= FRONT_DOOR, f"{script.name}: {sorted(set(imports) - FRONT_DOOR)}"

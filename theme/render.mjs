@@ -71,12 +71,22 @@ function resolveBuildDirectory(dir) {
   fail(`cannot tell where BUILD_DIRECTORY=${dir} is (tried ${candidates.join(', ')}); run myst from the project folder.`);
 }
 
+// A connection the local server drops under load ("other side closed", reset) is tried again, up to
+// FETCH_TRIES times with a growing pause; an HTTP error is final at once.
+const FETCH_TRIES = 5;
+
 async function fetchFrom(url, kind = 'json') {
   let res;
-  try {
-    res = await fetch(CDN + url);
-  } catch (err) {
-    throw new Error(`cannot reach the myst content server at ${CDN}${url}: ${err.cause?.message ?? err.message}`);
+  for (let attempt = 1; ; attempt++) {
+    try {
+      res = await fetch(CDN + url);
+      break;
+    } catch (err) {
+      if (attempt >= FETCH_TRIES) {
+        throw new Error(`cannot reach the myst content server at ${CDN}${url} (${attempt} tries): ${err.cause?.message ?? err.message}`);
+      }
+      await new Promise((resolve) => setTimeout(resolve, 200 * attempt));
+    }
   }
   if (!res.ok) throw new Error(`${url}: HTTP ${res.status} from the myst content server`);
   if (kind === 'json') return res.json();

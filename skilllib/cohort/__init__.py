@@ -9,6 +9,7 @@ import lazy_loader as _lazy
 __getattr__, __dir__, __all__ = _lazy.attach(
     __name__,
     submod_attrs={
-        "_model": ["CohortModel", "generate_cohort"],
+        "_calibration": ["calibration_table", "seed_survey", "SURVEY_CSV", "survey_summary"],
+        "_model": ["CohortModel", "generate_cohort", "model_table", "SEED"],
     },
 )

@@ -49,15 +49,27 @@ def calibration_values(features: pd.DataFrame, sweep=None) -> dict:
 
 
 def calibration_table(features: pd.DataFrame, sweep=None) -> pd.DataFrame:
-    """Target vs obtained for the paper's aggregate numbers, on a features table
-    (:func:`skilllib.features.trial_features`).
+    """Target vs obtained for the paper's aggregate numbers, on a features table.
 
-    Silhouettes as the paper: K-means (scikit-learn, ``n_init=10``, ``random_state=0``) on the raw
-    (PV m/s, SPARC) tuples of the selected trials, k = 2..16, via :func:`skilllib.prototypes.silhouette_sweep`
-    (pass ``sweep`` to reuse one); "valid" as there (average > 0, every cluster reaches above the average).
-    "Well separated" centre PVs: adjacent centres (sorted by PV) at least ``TARGETS['centre_gap']`` m/s
-    apart. "Large variability across participants" (Fig. 1b): the largest participant median of PV,
-    contact speed and duration is at least ``TARGETS['participant_ratio']`` times the smallest.
+    The features are those of :func:`skilllib.features.trial_features`. Silhouettes as the paper: K-means
+    (scikit-learn, ``n_init=10``, ``random_state=0``) on the raw (PV m/s, SPARC) tuples of the selected
+    trials, k = 2..16, via :func:`skilllib.prototypes.silhouette_sweep` (pass ``sweep`` to reuse one);
+    "valid" as there (average > 0, every cluster reaches above the average). "Well separated" centre PVs:
+    adjacent centres (sorted by PV) at least ``TARGETS['centre_gap']`` m/s apart. "Large variability across
+    participants" (Fig. 1b): the largest participant median of PV, contact speed and duration is at least
+    ``TARGETS['participant_ratio']`` times the smallest.
+
+    Parameters
+    ----------
+    features : pandas.DataFrame
+        The feature table (pv and contact_speed in m/s, duration in s, sparc dimensionless).
+    sweep : SilhouetteSweep or None
+        The silhouette sweep of the selected trials, to reuse; None: computed here.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per quantity: ``paper``, ``target``, ``obtained`` (text, PV in m/s) and ``met`` (bool).
     """
     v = calibration_values(features, sweep)
     lo, hi = TARGETS["selected"]
@@ -102,12 +114,26 @@ def calibration_table(features: pd.DataFrame, sweep=None) -> pd.DataFrame:
 
 
 def seed_survey(seeds, model: CohortModel | None = None) -> pd.DataFrame:
-    """The calibration numbers of the cohort of each seed, one row per seed: selected trials, valid k
-    (of 15), silhouette at k = 6, smallest centre-PV gap (m/s), smallest participant max/min ratio, and
-    ``all`` (every target of :func:`calibration_table` met). Slow: a cohort, its features and a
-    silhouette sweep per seed (several seconds each). Each cohort goes through the CSV writer's rounding
-    (:func:`skilllib.recordings.format_recordings`), so the row of :data:`skilllib.cohort.SEED` is what
-    ``data/cohort.csv`` gives."""
+    """The calibration numbers of the cohort of each seed, one row per seed.
+
+    Selected trials, valid k (of 15), silhouette at k = 6, smallest centre-PV gap (m/s), smallest
+    participant max/min ratio, and ``all`` (every target of :func:`calibration_table` met). Slow: a cohort,
+    its features and a silhouette sweep per seed (several seconds each). Each cohort goes through the CSV
+    writer's rounding (:func:`skilllib.recordings.format_recordings`), so the row of
+    :data:`skilllib.cohort.SEED` is what ``data/cohort.csv`` gives.
+
+    Parameters
+    ----------
+    seeds : iterable of int
+        The seeds (dimensionless).
+    model : CohortModel or None
+        The population parameters; None: the defaults.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per seed: counts, silhouette and ratio (dimensionless), centre gap (m/s), ``all`` (bool).
+    """
     rows = {}
     for s in seeds:
         text = format_recordings(generate_cohort(int(s), model).frame)
@@ -128,7 +154,18 @@ def seed_survey(seeds, model: CohortModel | None = None) -> pd.DataFrame:
 
 
 def survey_summary(survey: pd.DataFrame) -> pd.Series:
-    """How many seeds of a :func:`seed_survey` table meet each target of :func:`calibration_table`."""
+    """How many seeds of a :func:`seed_survey` table meet each target of :func:`calibration_table`.
+
+    Parameters
+    ----------
+    survey : pandas.DataFrame
+        The table of :func:`seed_survey`.
+
+    Returns
+    -------
+    pandas.Series
+        The number of seeds meeting each target (dimensionless).
+    """
     (lo, hi), (slo, shi) = TARGETS["selected"], TARGETS["silhouette_k6"]
     return pd.Series(
         {

@@ -41,13 +41,15 @@ and one per trial, so changing how one trial is drawn leaves every other trial u
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 from scipy.special import ndtri
 
-from ..recordings import COLUMNS, write_recordings
+from ..recordings import COLUMNS, Recordings, recordings_from_frame, write_recordings
+from ..smoothness import minimum_jerk_speed
 
 #: The seed of data/cohort.csv: the first seed 0, 1, 2, ... whose cohort meets every target of
 #: :func:`skilllib.cohort.calibration_table` (survey of seeds 0..SEED: ``data/seed_survey.csv``, data/README.md).
@@ -56,7 +58,79 @@ SEED = 9
 
 @dataclass(frozen=True)
 class CohortModel:
-    """Population parameters of the generator (units in the names' comments; ranges are uniform)."""
+    """Population parameters of the generator (ranges are uniform; see :func:`model_table`).
+
+    Ranges are (low, high) of a uniform draw; pairs marked "mean and SD" are those of a normal one.
+
+    Attributes
+    ----------
+    n_participants : int
+        Number of participants (dimensionless).
+    n_trials : int
+        Number of trials per participant (dimensionless).
+    fs : float
+        Sampling rate of the positions (Hz; the paper: 60 Hz).
+    travel : tuple of float
+        Range of a participant's start-to-surface distance (m).
+    start_box : float
+        Edge of the start box; trial start positions vary inside it (m).
+    surface_y : tuple of float
+        Range of the height of the contact surface in the device frame (m).
+    dur_median : float
+        Median of the participants' preferred primary-submovement durations (s).
+    dur_between : float
+        Spread of the preferred duration across participants (dimensionless, a log-SD).
+    dur_within : tuple of float
+        Range of the spread of duration across one participant's trials (dimensionless, a log-SD).
+    min_duration : float
+        Shortest primary submovement (an assumption: no faster aiming) (s).
+    aim_median : float
+        Median of the participants' typical contact speeds (the instruction) (m/s).
+    aim_between : float
+        Bias of the typical contact speed across participants (dimensionless, a log-SD).
+    aim_within : tuple of float
+        Range of the spread of the intended contact speed across trials (dimensionless, a log-SD).
+    aim_soft_min : tuple of float
+        Knee and floor of the smooth lower limit of intended contact speeds (m/s).
+    aim_soft_max : tuple of float
+        Knee and ceiling of the smooth upper limit of intended contact speeds (m/s).
+    rtpv : tuple of float
+        Range of the relative time to peak speed at a 0.5 s duration (downward movement) (dimensionless).
+    rtpv_slope : float
+        Change of the relative time to peak speed per second of duration (per s).
+    rtpv_within : float
+        SD of the relative time to peak speed across one participant's trials (dimensionless).
+    correction_rate : tuple of float
+        Range of a participant's share of corrected trials (dimensionless).
+    correction_pv_ref : float
+        Primary peak speed at which trials are corrected at the participant's rate (m/s).
+    correction_speed_exp : float
+        Exponent of the growth of the correction probability with peak speed (dimensionless).
+    second_correction : float
+        Probability of a second correction after a first (0: off) (dimensionless).
+    primary_reach : tuple of float
+        Mean and SD of the share of the distance a short primary covers (dimensionless).
+    correction_delay : tuple of float
+        Mean and SD of a correction's onset, as a share of the previous duration (dimensionless).
+    correction_duration : tuple of float
+        Range of a corrective submovement's duration (s).
+    rest_before : tuple of float
+        Range of the rest in the start box before onset (s).
+    rest_after : tuple of float
+        Range of the rest on the surface after contact (s).
+    tilt_sd : float
+        SD of a participant's tilt of the movement from the vertical (x and z) (deg).
+    bow_sd : float
+        SD of the per-trial lateral bow at mid-movement (m).
+    sway : float
+        Amplitude of the slow postural sway (0.2-1 Hz) (m).
+    noise_sd : float
+        SD of the white position noise on each axis (the device's resolution) (m).
+    wall_tau : float
+        Time constant of the critically damped virtual wall (s).
+    press_depth : tuple of float
+        Range of the static penetration while resting on the surface (m).
+    """
 
     n_participants: int = 10
     n_trials: int = 150
@@ -79,7 +153,7 @@ class CohortModel:
     correction_rate: tuple[float, float] = (0.45, 0.75)  # a participant's share of corrected trials
     correction_pv_ref: float = 0.9  # m/s: a primary with this peak speed is corrected at the participant's rate
     correction_speed_exp: float = 1.6  # correction probability grows as (peak speed / correction_pv_ref)^this
-    second_correction: float = 0.0  # probability of a second correction after a first (off: see README)
+    second_correction: float = 0.0  # probability of a second correction after a first (off: data/README.md)
     primary_reach: tuple[float, float] = (0.84, 0.07)  # mean, SD: share of the distance a short primary covers
     correction_delay: tuple[float, float] = (0.68, 0.15)  # mean, SD: correction onset, share of previous T
     correction_duration: tuple[float, float] = (0.15, 0.35)  # s
@@ -105,17 +179,16 @@ class Cohort:
     model: CohortModel
     seed: int
 
+    @cached_property
+    def recordings(self) -> Recordings:
+        """The generated recordings, validated once (what :func:`skilllib.features.trial_features` takes)."""
+        return recordings_from_frame(self.frame, f"<cohort seed {self.seed}>")
+
 
 def _mj(s: np.ndarray) -> np.ndarray:
     """Minimum-jerk position, 0..1 over local time s in [0, 1]."""
     s = np.clip(s, 0.0, 1.0)
     return s**3 * (10 - 15 * s + 6 * s**2)
-
-
-def _mjd(s: np.ndarray) -> np.ndarray:
-    """Minimum-jerk speed d/ds of :func:`_mj` (peak 1.875 at 0.5), zero outside [0, 1]."""
-    inside = (s > 0) & (s < 1)
-    return np.where(inside, 30 * s**2 * (1 - s) ** 2, 0.0)
 
 
 def submovement(t: np.ndarray, onset: float, amp: float, dur: float, k: float = 0.5) -> tuple[np.ndarray, np.ndarray]:
@@ -127,7 +200,7 @@ def submovement(t: np.ndarray, onset: float, amp: float, dur: float, k: float = 
     scale = np.where(rise, 2 * k, 2 * (1 - k))
     pos = amp * np.where(rise, scale * _mj(sig), k + scale * (_mj(sig) - 0.5))
     pos = np.where(tau <= 0, 0.0, np.where(tau >= 1, amp, pos))
-    return pos, amp / dur * _mjd(sig)
+    return pos, amp / dur * minimum_jerk_speed(sig)  # d/ds of _mj: 30 s**2 (1 - s)**2 on [0, 1]
 
 
 def _drop(t: np.ndarray, subs: list[tuple[float, float, float, float]]) -> tuple[np.ndarray, np.ndarray]:
@@ -295,10 +368,27 @@ def _trial(rng: np.random.Generator, m: CohortModel, p: dict, trial: int) -> tup
 
 
 def generate_cohort(seed: int = SEED, model: CohortModel | None = None) -> Cohort:
-    """The synthetic cohort: ``model.n_participants`` x ``model.n_trials`` trials (default: the paper's
-    10 x 150 at 60 Hz). Same seed and model give the same cohort. Each trial has its own random stream
-    (``SeedSequence(seed).spawn`` per participant, plus one for the traits, then ``spawn`` per trial), so
-    changing ``n_trials`` leaves earlier trials unchanged and a trial's draws never shift another's."""
+    """The synthetic cohort: ``model.n_participants`` x ``model.n_trials`` trials.
+
+    The default is the paper's 10 x 150 at 60 Hz. Same seed and model give the same cohort. Each trial has
+    its own random stream (``SeedSequence(seed).spawn`` per participant, plus one for the traits, then
+    ``spawn`` per trial), so changing ``n_trials`` leaves earlier trials unchanged and a trial's draws never
+    shift another's.
+
+    Parameters
+    ----------
+    seed : int
+        The seed of the cohort (dimensionless); the book's is :data:`skilllib.cohort.SEED`.
+    model : CohortModel or None
+        The population parameters (units in :class:`CohortModel`); None: the defaults.
+
+    Returns
+    -------
+    Cohort
+        ``frame``: the recordings (t in s, positions in m, contact 0/1); ``participants``: one row of
+        parameters per participant; ``truth``: per trial the generator's ground truth (onset and contact
+        times in s, peak and contact speed in m/s); ``model`` and ``seed``.
+    """
     m = model or CohortModel()
     frames, truths = [], []
     streams = np.random.SeedSequence(seed).spawn(m.n_participants + 1)
@@ -369,8 +459,20 @@ PARAMETER_DOCS: dict[str, tuple[str, str]] = {
 
 
 def model_table(model: CohortModel | None = None) -> pd.DataFrame:
-    """The generator's parameters as a table (value, unit, meaning); ranges are (low, high) of a uniform
-    draw, pairs marked "mean and SD" are those of a normal one."""
+    """The generator's parameters as a table (value, unit, meaning).
+
+    Ranges are (low, high) of a uniform draw, pairs marked "mean and SD" are those of a normal one.
+
+    Parameters
+    ----------
+    model : CohortModel or None
+        The population parameters; None: the defaults.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per parameter: ``value``, ``unit`` and ``meaning`` (text).
+    """
     m = asdict(model or CohortModel())
     rows = {k: {"value": str(v), "unit": PARAMETER_DOCS[k][0], "meaning": PARAMETER_DOCS[k][1]} for k, v in m.items()}
     return pd.DataFrame.from_dict(rows, orient="index").rename_axis("parameter")

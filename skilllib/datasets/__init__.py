@@ -12,5 +12,13 @@ from pathlib import Path
 
 
 def cohort_path() -> Path:
-    """The synthetic cohort's CSV file (10 participants x 150 trials at 60 Hz; format :mod:`skilllib.recordings`)."""
+    """The synthetic cohort's CSV file.
+
+    10 participants x 150 trials at 60 Hz; format :mod:`skilllib.recordings` (t in s, positions in m).
+
+    Returns
+    -------
+    pathlib.Path
+        The path of ``cohort.csv`` inside the installed package.
+    """
     return Path(str(files(__name__) / "cohort.csv"))

@@ -12,8 +12,18 @@ __getattr__, __dir__, __all__ = _lazy.attach(
     __name__,
     submod_attrs={
         "_dask": ["cluster_features"],
-        "_filtering": ["choose_lowpass", "Lowpass", "NO_FILTER", "parse_lowpass"],
+        "_filtering": [
+            "choose_lowpass",
+            "Lowpass",
+            "NO_FILTER",
+            "NOISE_FIT_RANGE",
+            "parse_lowpass",
+            "residual_analysis",
+            "ResidualAnalysis",
+            "residual_trials",
+        ],
         "_segmentation": [
+            "Segment",
             "CONTACT_WINDOW",
             "DIFF_SPAN_S",
             "diff_window",

@@ -19,7 +19,7 @@ so the feature table is the same (tested on a ``LocalCluster``):
 
 Clustering and transfer then run on the client on the gathered table, as in memory; the prototypes'
 samples are read from their partitions. ``--workers N`` starts a ``distributed.LocalCluster`` of N
-single-threaded worker processes; ``--scheduler ADDRESS`` connects to a running scheduler (README:
+single-threaded worker processes; ``--scheduler ADDRESS`` connects to a running scheduler (docs/cli.md:
 ``dask scheduler`` and ``dask worker`` on the nodes, dask-jobqueue on a batch system, dask-kubernetes).
 The workers need skilllib installed and the dataset's path readable at the same place.
 """
@@ -267,10 +267,41 @@ def cluster_features(
     read_options: Mapping[str, Any] | None = None,
     variants: Sequence[Any] = (),
 ) -> tuple[PartitionedRecordings, pd.DataFrame]:
-    """The run's features on a cluster (``--workers``/``--scheduler``): the recordings' stand-in and the
-    feature table. The client (and a LocalCluster it started) is closed before returning. ValueError
-    (:class:`ClusterOptionError`) for what the cluster path does not take; DataFormatError (also a
-    ValueError) for the data."""
+    """The run's features on a cluster (``--workers``/``--scheduler``).
+
+    Returns the recordings' stand-in and the feature table. The client (and a LocalCluster it started) is
+    closed before returning.
+
+    Parameters
+    ----------
+    data : Any
+        The recordings: a folder of Parquet files, each holding whole trials (text path).
+    workers : int or None
+        Number of local worker processes (dimensionless), >= 1; None: the scheduler's.
+    scheduler : str or None
+        Address of a running Dask scheduler (text); None: a LocalCluster.
+    lowpass : Any
+        The positions' low-pass filter, as :func:`run_lowpass` takes it (cut-off in Hz).
+    sparc_params : mapping of str to float
+        SPARC's parameters ``fc`` (Hz), ``amp_th`` and ``padlevel`` (dimensionless).
+    read_options : mapping of str to Any or None
+        The read options of :func:`skilllib.recordings.load_recordings` (text); all must be None here.
+    variants : sequence
+        SPARC settings of a sensitivity run; must be empty here.
+
+    Returns
+    -------
+    recordings : PartitionedRecordings
+        The recordings' stand-in.
+    features : pandas.DataFrame
+        The feature table of :func:`trial_features` (m/s, s, SPARC dimensionless).
+
+    Raises
+    ------
+    ValueError
+        :class:`ClusterOptionError` for what the cluster path does not take; DataFormatError (also a
+        ValueError) for the data.
+    """
     if data is None or not isinstance(data, (str, Path)) or not Path(data).is_dir() or not is_parquet(data):
         raise ClusterOptionError(
             "--workers and --scheduler need --data a folder of Parquet files (each holding "

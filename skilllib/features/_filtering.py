@@ -34,7 +34,7 @@ Only the samples before contact are filtered (the approach; the impact is a velo
 would smear into it), each end extended by odd reflection about a straight line fitted to the samples
 there (:func:`_extend`), not about the raw end sample as scipy's default does, whose noise the filter
 would otherwise keep as a step at the first sample.
-What filtering does to SPARC is shown in chapter 7: it removes spectrum above the cut-off, and a band
+What filtering does to SPARC is shown in chapter 10: it removes spectrum above the cut-off, and a band
 that SPARC reads beyond the cut-off is partly the filter's (the pipeline counts those trials).
 """
 
@@ -170,9 +170,21 @@ def rest_noise(approaches: Sequence[np.ndarray], fs: float) -> float:
 
 @dataclass(frozen=True)
 class ResidualAnalysis:
-    """Winter's residual analysis: ``cutoffs`` (Hz), ``residual`` (m, RMS over the positions),
-    ``noise_m`` (the fitted line's value at 0 Hz: the noise's RMS, m), ``slope`` (m/Hz) and ``cutoff_hz``
-    (the lowest cut-off with residual <= noise; None when the residual never falls that low)."""
+    """Winter's residual analysis: the residual of every cut-off scanned, the noise line and the cut-off.
+
+    Attributes
+    ----------
+    cutoffs : numpy.ndarray
+        The cut-offs scanned (Hz).
+    residual : numpy.ndarray
+        The RMS residual between raw and filtered positions at each cut-off (m).
+    noise_m : float
+        The fitted noise line's value at 0 Hz: the noise's RMS amplitude (m).
+    slope : float
+        The fitted noise line's slope (m per Hz).
+    cutoff_hz : float or None
+        The lowest cut-off with residual <= noise (Hz); None when the residual never falls that low.
+    """
 
     cutoffs: np.ndarray
     residual: np.ndarray
@@ -189,6 +201,23 @@ def residual_analysis(approaches: Sequence[np.ndarray], fs: float) -> ResidualAn
     minus filtered positions. The trials are filtered together: each is cut to the same length (the
     median length of those given, its last samples, the movement's end; shorter trials are left out).
     The noise line is fitted by least squares over :data:`NOISE_FIT_RANGE` of the Nyquist frequency.
+
+    Parameters
+    ----------
+    approaches : sequence of numpy.ndarray
+        The trials' approach positions, each (N, 3) (m), as :func:`skilllib.features.approaches` gives them.
+    fs : float
+        The sampling rate (Hz).
+
+    Returns
+    -------
+    ResidualAnalysis
+        The residual of every cut-off (Hz, m), the noise line (m, m/Hz) and the cut-off chosen (Hz).
+
+    Raises
+    ------
+    ValueError
+        When no trial has 4 samples or the rate is too low for the scan.
     """
     usable = [np.asarray(a, dtype=float) for a in approaches if len(a) >= 4]
     if not usable:
@@ -217,6 +246,21 @@ class Lowpass:
     limit), ``"auto: not needed"`` (``auto``, noise below it) or ``"none"``; ``noise_m``: the position
     noise at rest (m, :func:`rest_noise`) and ``speed_noise``: the 3-D speed noise it gives without a filter
     (m/s), when estimated.
+
+    Attributes
+    ----------
+    cutoff_hz : float or None
+        The -3 dB frequency of the forward-backward filter (Hz); None: no filter.
+    chosen_by : str
+        How the cut-off was chosen (text).
+    order : int
+        The Butterworth filter's order (dimensionless).
+    noise_m : float or None
+        The position noise at rest (m), when estimated.
+    speed_noise : float or None
+        The 3-D speed noise that position noise gives without a filter (m/s), when estimated.
+    fs : float or None
+        The recordings' sampling rate (Hz), for the exact design frequency.
     """
 
     cutoff_hz: float | None
@@ -252,7 +296,23 @@ NO_FILTER = Lowpass(None, "none")
 
 
 def parse_lowpass(value: str | float | None) -> str | float:
-    """``"auto"``, ``"none"`` or a cut-off in Hz (> 0) from an option value; ValueError otherwise."""
+    """``"auto"``, ``"none"`` or a cut-off in Hz (> 0) from an option value.
+
+    Parameters
+    ----------
+    value : str, float or None
+        The option's value: ``"auto"``, ``"none"`` (text) or a cut-off frequency (Hz); None is ``"none"``.
+
+    Returns
+    -------
+    str or float
+        ``"auto"``, ``"none"`` (text) or the cut-off frequency (Hz).
+
+    Raises
+    ------
+    ValueError
+        For any other value.
+    """
     if value is None:
         return "none"
     if isinstance(value, str):
@@ -271,7 +331,18 @@ def parse_lowpass(value: str | float | None) -> str | float:
 
 def residual_trials(n: int) -> range:
     """Which of ``n`` approaches the residual analysis of ``"auto"`` reads: at most :data:`RESIDUAL_TRIALS`,
-    evenly spaced from the first (deterministic)."""
+    evenly spaced from the first (deterministic).
+
+    Parameters
+    ----------
+    n : int
+        The number of approaches (dimensionless).
+
+    Returns
+    -------
+    range
+        The indices (dimensionless) of the approaches read.
+    """
     return range(0, n, max(1, n // RESIDUAL_TRIALS))[:RESIDUAL_TRIALS]
 
 
@@ -283,12 +354,38 @@ def choose_lowpass(
     *,
     noise: float | None = None,
 ) -> Lowpass:
-    """The :class:`Lowpass` for a run: ``spec`` ``"none"``, a cut-off in Hz, a :class:`Lowpass` (used as it
-    is), or ``"auto"``: Winter's residual analysis over (at most :data:`RESIDUAL_TRIALS` of) the trials'
-    approach positions, filtering at its cut-off only when the noise it finds, differentiated over
-    ``window`` samples, exceeds :data:`SPEED_NOISE_LIMIT` (module docstring). ``noise``: the
-    :func:`rest_noise` of ``approaches`` when the caller computed it (then ``approaches`` must hold only
-    approaches of at least 4 samples and may be a lazy sequence: only the residual analysis reads it)."""
+    """The :class:`Lowpass` for a run.
+
+    ``spec`` is ``"none"``, a cut-off in Hz, a :class:`Lowpass` (used as it is), or ``"auto"``: Winter's
+    residual analysis over (at most :data:`RESIDUAL_TRIALS` of) the trials' approach positions, filtering
+    at its cut-off only when the noise it finds, differentiated over ``window`` samples, exceeds
+    :data:`SPEED_NOISE_LIMIT` (module docstring).
+
+    Parameters
+    ----------
+    spec : str, float, Lowpass or None
+        ``"auto"``, ``"none"`` (text), a cut-off frequency (Hz) or a :class:`Lowpass`.
+    approaches : sequence of numpy.ndarray
+        The trials' approach positions, each (N, 3) (m).
+    fs : float
+        The sampling rate (Hz).
+    window : int
+        The differentiating window (samples), as :func:`diff_window`.
+    noise : float or None
+        The :func:`rest_noise` of ``approaches`` (m) when the caller computed it (then ``approaches`` must
+        hold only approaches of at least 4 samples and may be a lazy sequence: only the residual analysis
+        reads it); None: estimated here.
+
+    Returns
+    -------
+    Lowpass
+        The filter (cut-off in Hz, noise in m and m/s).
+
+    Raises
+    ------
+    ValueError
+        For a ``spec`` that is none of these.
+    """
     if isinstance(spec, Lowpass):
         return spec
     spec = parse_lowpass(spec)

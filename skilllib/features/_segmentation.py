@@ -27,8 +27,24 @@ MIN_APPROACH_SAMPLES = 2  #: fewer samples before contact leave nothing to diffe
 class Segment:
     """The approach of one trial from onset to the last sample before contact.
 
-    ``t`` (N,) s as recorded; ``pos`` (N, 3) m; ``vel`` (N, 3) m/s; ``speed`` (N,) m/s; ``fs`` Hz;
-    ``onset`` and ``contact``: indices in the trial of the onset sample and of the first contact sample.
+    What the robot needs of a prototype: :func:`skilllib.robot.transfer` takes a Segment as it is.
+
+    Attributes
+    ----------
+    participant, trial : str
+        The trial's ids (text, as written in the recordings).
+    t : numpy.ndarray
+        Time stamps as recorded, (N,) s (:attr:`time` counts from the onset).
+    pos : numpy.ndarray
+        Tool-tip positions, (N, 3) m, in the book's frame (x mediolateral, y up, z anteroposterior).
+    vel : numpy.ndarray
+        Velocities, (N, 3) m/s (the positions differentiated).
+    speed : numpy.ndarray
+        Speed, (N,) m/s.
+    fs : float
+        Sampling rate, Hz.
+    onset, contact : int
+        Indices (samples) in the trial of the onset sample and of the first contact sample.
     """
 
     participant: str
@@ -46,19 +62,52 @@ class Segment:
         """Onset to contact in s (``N / fs``)."""
         return len(self.speed) / self.fs
 
+    @property
+    def time(self) -> np.ndarray:
+        """The time stamps from the onset sample, (N,) s (``t - t[0]``): the time axis a prototype is
+        plotted and executed on."""
+        return self.t - self.t[0]
+
 
 def diff_window(fs: float, span_s: float = DIFF_SPAN_S) -> int:
-    """Samples (odd, at least 3) of the differentiating window that spans ``span_s`` s at ``fs`` Hz."""
+    """Samples (odd, at least 3) of the differentiating window that spans ``span_s`` s at ``fs`` Hz.
+
+    Parameters
+    ----------
+    fs : float
+        The sampling rate (Hz).
+    span_s : float
+        The time the window spans (s).
+
+    Returns
+    -------
+    int
+        The window's length (samples), odd and at least 3.
+    """
     return max(MIN_DIFF_WINDOW, 2 * int(round(span_s * fs / 2)) + 1)
 
 
 def velocity(pos: np.ndarray, fs: float, span_s: float = DIFF_SPAN_S) -> np.ndarray:
-    """Velocity (N, 3) in m/s of positions (N, 3) in m sampled at ``fs`` Hz.
+    """Velocity of positions sampled at ``fs`` Hz.
 
     Savitzky-Golay derivative of a quadratic fitted over :func:`diff_window` samples (``span_s`` s;
     quadratic fits to the first/last window at the ends). At 60 Hz the window has 3 samples and this is
     ``numpy.gradient(pos, 1/fs, edge_order=2)``. Shorter inputs use the largest odd window that fits;
     2 samples give their difference quotient. Needs N >= 2.
+
+    Parameters
+    ----------
+    pos : numpy.ndarray, shape (N, 3)
+        The positions (m), N >= 2.
+    fs : float
+        The sampling rate (Hz).
+    span_s : float
+        The time the differentiating window spans (s).
+
+    Returns
+    -------
+    numpy.ndarray, shape (N, 3)
+        The velocity (m/s).
     """
     pos = np.asarray(pos, dtype=float)
     if len(pos) < 2:
@@ -81,10 +130,38 @@ def segment_arrays(
     trial: Any = None,
     lowpass: Lowpass | None = None,
 ) -> Segment | str:
-    """Segment one trial's samples (``contact`` boolean); returns the :class:`Segment` or the reason
-    (a string) why the trial cannot be segmented. ``lowpass``: the filter applied to the approach's
-    positions before they are differentiated (:mod:`skilllib.features`; None: none); the segment's
-    ``pos`` are then the filtered positions."""
+    """Segment one trial's samples; returns the :class:`Segment` or the reason it cannot be segmented.
+
+    ``lowpass``: the filter applied to the approach's positions before they are differentiated
+    (:mod:`skilllib.features`; None: none); the segment's ``pos`` are then the filtered positions.
+
+    Parameters
+    ----------
+    t : numpy.ndarray, shape (N,)
+        The time stamps (s).
+    pos : numpy.ndarray, shape (N, 3)
+        The positions (m).
+    contact : numpy.ndarray of bool, shape (N,)
+        The contact flag (dimensionless).
+    fs : float
+        The sampling rate (Hz).
+    onset_speed : float
+        The speed above which the movement has begun (m/s).
+    min_samples : int
+        The fewest samples a segment may have (samples).
+    participant : Any
+        The participant's id, kept in the segment (text).
+    trial : Any
+        The trial's id, kept in the segment (text).
+    lowpass : Lowpass or None
+        The positions' filter (cut-off in Hz); None: none.
+
+    Returns
+    -------
+    Segment or str
+        The segment (times in s, positions in m, speeds in m/s), or the reason (text) why the trial cannot
+        be segmented.
+    """
     hits = np.flatnonzero(contact)
     if hits.size == 0:
         return NO_CONTACT

@@ -43,7 +43,7 @@ import numpy as np
 import pandas as pd
 
 from .. import smoothness
-from ..recordings import Recordings, first_true, recordings_from_frame, sort_ids
+from ..recordings import ID_COLUMNS, Recordings, first_true, sort_ids
 from . import _vectorised as batch
 from ._filtering import Lowpass, choose_lowpass
 from ._segmentation import (
@@ -60,8 +60,7 @@ from ._segmentation import (
 #: SPARC settings of the SPARC chapter (Balasubramanian et al. 2015 defaults): fc in Hz, amp_th, padlevel
 SPARC_PARAMS: dict[str, float] = dict(smoothness.SPARC_PARAMS)
 FEATURE_COLUMNS = (
-    "participant",
-    "trial",
+    *ID_COLUMNS,
     "status",
     "reason",
     "pv",
@@ -78,12 +77,19 @@ FEATURE_COLUMNS = (
 )
 
 
-def _as_recordings(recordings: Recordings | pd.DataFrame) -> Recordings:
-    return recordings if isinstance(recordings, Recordings) else recordings_from_frame(recordings)
+def _as_recordings(recordings: Recordings) -> Recordings:
+    """The feature code takes :class:`Recordings` only: a table is validated once, at the door
+    (:func:`skilllib.recordings.load_recordings`), not again by every function that reads it."""
+    if not isinstance(recordings, Recordings):
+        raise TypeError(
+            f"expected Recordings, got {type(recordings).__name__}: read or validate the data first with "
+            "skilllib.load_recordings(...)"
+        )
+    return recordings
 
 
 def segment(
-    recordings: Recordings | pd.DataFrame,
+    recordings: Recordings,
     participant: Any,
     trial: Any,
     *,
@@ -91,10 +97,36 @@ def segment(
     min_samples: int = MIN_SEGMENT_SAMPLES,
     lowpass: Lowpass | None = None,
 ) -> Segment:
-    """The segmented approach (onset to the last sample before contact) of one trial; ``lowpass`` as in
-    :func:`segment_arrays` (a run's filter: ``features.attrs["lowpass"]`` of :func:`trial_features`).
+    """The segmented approach (onset to the last sample before contact) of one trial.
 
-    Raises KeyError for an unknown trial and ValueError, with the reason, for an invalid one.
+    Parameters
+    ----------
+    recordings : Recordings or pandas.DataFrame
+        The recordings (t in s, positions in m), or a long table :func:`skilllib.recordings.recordings_from_frame`
+        validates.
+    participant : Any
+        The participant's id (text; a number is looked up as its text).
+    trial : Any
+        The trial's id (text; a number is looked up as its text).
+    onset_speed : float
+        The speed above which the movement has begun (m/s).
+    min_samples : int
+        The fewest samples a segment may have (samples).
+    lowpass : Lowpass or None
+        As in :func:`segment_arrays` (a run's filter: ``features.attrs["lowpass"]`` of
+        :func:`trial_features`; cut-off in Hz); None: none.
+
+    Returns
+    -------
+    Segment
+        The segment: times (s), positions (m), speeds (m/s).
+
+    Raises
+    ------
+    KeyError
+        For an unknown trial.
+    ValueError
+        With the reason, for an invalid one.
     """
     rec = _as_recordings(recordings)
     tr = rec.trial(participant, trial)
@@ -127,9 +159,22 @@ def _window_reason(v: float, window: tuple[float, float]) -> str:
     return ""
 
 
-def approaches(recordings: Recordings | pd.DataFrame) -> list[np.ndarray]:
-    """The positions (m) before first contact of every usable trial (status ok), in trial order: what
-    :func:`skilllib.features.choose_lowpass` looks at to choose a cut-off."""
+def approaches(recordings: Recordings) -> list[np.ndarray]:
+    """The positions before first contact of every usable trial (status ok), in trial order.
+
+    What :func:`skilllib.features.choose_lowpass` looks at to choose a cut-off.
+
+    Parameters
+    ----------
+    recordings : Recordings or pandas.DataFrame
+        The recordings (t in s, positions in m), or a long table :func:`skilllib.recordings.recordings_from_frame`
+        validates.
+
+    Returns
+    -------
+    list of numpy.ndarray
+        One (N, 3) array of positions (m) per usable trial.
+    """
     rec = _as_recordings(recordings)
     out = []
     for (p, tr), status in zip(rec.keys(), rec.trials["status"]):
@@ -140,10 +185,25 @@ def approaches(recordings: Recordings | pd.DataFrame) -> list[np.ndarray]:
     return out
 
 
-def run_lowpass(recordings: Recordings | pd.DataFrame, lowpass: str | float | Lowpass | None = "auto") -> Lowpass:
-    """The :class:`skilllib.features.Lowpass` that ``lowpass`` (``"auto"``, ``"none"``, Hz or a Lowpass)
-    means for these recordings (``"auto"``: Winter's residual analysis over their approaches, the noise
-    at rest measured over all trials at once, :func:`skilllib.features.rest_noise_many`)."""
+def run_lowpass(recordings: Recordings, lowpass: str | float | Lowpass | None = "auto") -> Lowpass:
+    """The :class:`skilllib.features.Lowpass` that ``lowpass`` means for these recordings.
+
+    ``"auto"``: Winter's residual analysis over their approaches, the noise at rest measured over all
+    trials at once (:func:`skilllib.features.rest_noise_many`).
+
+    Parameters
+    ----------
+    recordings : Recordings or pandas.DataFrame
+        The recordings (t in s, positions in m), or a long table :func:`skilllib.recordings.recordings_from_frame`
+        validates.
+    lowpass : str, float, Lowpass or None
+        ``"auto"``, ``"none"`` (text), a cut-off frequency (Hz) or a :class:`Lowpass`.
+
+    Returns
+    -------
+    Lowpass
+        The filter (cut-off in Hz).
+    """
     rec = _as_recordings(recordings)
     if isinstance(lowpass, Lowpass):
         return lowpass
@@ -179,7 +239,7 @@ def run_lowpass(recordings: Recordings | pd.DataFrame, lowpass: str | float | Lo
 
 
 def trial_features(
-    recordings: Recordings | pd.DataFrame,
+    recordings: Recordings,
     *,
     sparc_params: Mapping[str, float] | None = None,
     window: tuple[float, float] = CONTACT_WINDOW,
@@ -189,6 +249,7 @@ def trial_features(
     progress: Callable[[Sequence[Any], str], Iterable[Any]] | None = None,
 ) -> pd.DataFrame:
     """One row per trial of ``recordings`` (all of them, in their order) with its features and status.
+
     Computed for all trials at once (:mod:`skilllib.features`), with the same values as the per-trial
     :func:`segment_arrays`, :func:`skilllib.smoothness.ldlj` and :func:`skilllib.smoothness.sparc_bands`.
 
@@ -198,10 +259,32 @@ def trial_features(
     (segment samples), ``t_onset``, ``t_contact`` (s, time stamps of the onset sample and of the
     first contact sample), ``resampled`` (the trial's time stamps were irregular and it was resampled onto
     the uniform grid, :mod:`skilllib.recordings`). Features are NaN (NA) only for invalid trials.
-    ``sparc_params`` defaults to :data:`SPARC_PARAMS`; ``window`` is the inclusive contact-speed window in
-    m/s; ``lowpass``: the positions' low-pass filter (:func:`run_lowpass`; default ``"auto"``, which does
-    not filter the book's cohort), recorded in ``attrs["lowpass"]`` of the result; ``progress(items,
-    description)`` may wrap the loop over trials (e.g. tqdm).
+
+    Parameters
+    ----------
+    recordings : Recordings or pandas.DataFrame
+        The recordings (t in s, positions in m), or a long table :func:`skilllib.recordings.recordings_from_frame`
+        validates.
+    sparc_params : mapping of str to float or None
+        SPARC's parameters ``fc`` (Hz), ``amp_th`` and ``padlevel`` (dimensionless); None:
+        :data:`SPARC_PARAMS`.
+    window : tuple of float
+        The inclusive contact-speed window of the selected trials (m/s).
+    onset_speed : float
+        The speed above which the movement has begun (m/s).
+    min_samples : int
+        The fewest samples a segment may have (samples).
+    lowpass : str, float, Lowpass or None
+        The positions' low-pass filter (:func:`run_lowpass`): ``"auto"`` (which does not filter the book's
+        cohort), ``"none"`` (text), a cut-off (Hz) or a :class:`Lowpass`; recorded in ``attrs["lowpass"]``
+        of the result.
+    progress : callable or None
+        ``progress(items, description)`` may wrap the loop over trials (e.g. tqdm; description text).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The feature table (columns and units above).
     """
     rec = _as_recordings(recordings)
     params = {**SPARC_PARAMS, **(sparc_params or {})}
@@ -269,12 +352,36 @@ def trial_features(
 
 
 def select(features: pd.DataFrame) -> pd.DataFrame:
-    """The selected trials (status ``selected``), index reset: the input of the clustering chapter."""
+    """The selected trials (status ``selected``), index reset: the input of the clustering chapter.
+
+    Parameters
+    ----------
+    features : pandas.DataFrame
+        The feature table of :func:`trial_features` (pv and contact_speed in m/s, duration in s, sparc
+        dimensionless).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The rows of the selected trials, same columns and units.
+    """
     return features[features["status"] == "selected"].reset_index(drop=True)
 
 
 def status_counts(features: pd.DataFrame) -> pd.DataFrame:
-    """Trials per participant and status (columns selected, excluded, invalid, total), with a total row."""
+    """Trials per participant and status (columns selected, excluded, invalid, total), with a total row.
+
+    Parameters
+    ----------
+    features : pandas.DataFrame
+        The feature table of :func:`trial_features` (pv and contact_speed in m/s, duration in s, sparc
+        dimensionless).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The counts of trials (dimensionless).
+    """
     t = pd.crosstab(features["participant"], features["status"])
     t = t.reindex(index=sort_ids(t.index), columns=["selected", "excluded", "invalid"], fill_value=0)
     t["total"] = t.sum(axis=1)
@@ -283,8 +390,23 @@ def status_counts(features: pd.DataFrame) -> pd.DataFrame:
 
 
 def participant_summary(features: pd.DataFrame) -> pd.DataFrame:
-    """Per participant, over its valid (selected or excluded) trials: median and interquartile range of
-    peak speed (m/s), contact speed (m/s), duration (s) and SPARC, and the number of selected trials."""
+    """Per participant, over its valid (selected or excluded) trials: medians and interquartile ranges.
+
+    Median and interquartile range of peak speed (m/s), contact speed (m/s), duration (s) and SPARC, and
+    the number of selected trials.
+
+    Parameters
+    ----------
+    features : pandas.DataFrame
+        The feature table of :func:`trial_features` (pv and contact_speed in m/s, duration in s, sparc
+        dimensionless).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per participant: the medians and interquartile ranges (m/s, s, SPARC dimensionless) and
+        the number of selected trials.
+    """
     valid = features[features["status"] != "invalid"]
     g = valid.groupby("participant", sort=True)
     cols = {"pv": "PV (m/s)", "contact_speed": "contact speed (m/s)", "duration": "duration (s)", "sparc": "SPARC"}
@@ -296,12 +418,30 @@ def participant_summary(features: pd.DataFrame) -> pd.DataFrame:
     return out.reindex(sort_ids(out.index))
 
 
-def rest_speed(recordings: Recordings | pd.DataFrame, features: pd.DataFrame, margin: float = 0.2) -> np.ndarray:
-    """Speeds (m/s) at the interior samples (central differences, as inside a segment) more than
-    ``margin`` s before onset in the valid trials: the noise floor at rest (white position noise of SD s
-    gives s * fs / sqrt(2) per axis). The margin leaves out the slow start of the movement; the first
-    sample is left out because its one-sided three-point difference amplifies noise about 3.6 times more
-    than a central difference (coefficients 3/2, -2, 1/2 against 1/2, -1/2)."""
+def rest_speed(recordings: Recordings, features: pd.DataFrame, margin: float = 0.2) -> np.ndarray:
+    """Speeds at the interior samples more than ``margin`` s before onset in the valid trials.
+
+    Central differences, as inside a segment: the noise floor at rest (white position noise of SD s gives
+    s * fs / sqrt(2) per axis). The margin leaves out the slow start of the movement; the first sample is
+    left out because its one-sided three-point difference amplifies noise about 3.6 times more than a
+    central difference (coefficients 3/2, -2, 1/2 against 1/2, -1/2).
+
+    Parameters
+    ----------
+    recordings : Recordings or pandas.DataFrame
+        The recordings (t in s, positions in m), or a long table :func:`skilllib.recordings.recordings_from_frame`
+        validates.
+    features : pandas.DataFrame
+        The feature table of :func:`trial_features` (pv and contact_speed in m/s, duration in s, sparc
+        dimensionless).
+    margin : float
+        The time before onset left out (s).
+
+    Returns
+    -------
+    numpy.ndarray
+        The speeds at rest (m/s).
+    """
     rec = _as_recordings(recordings)
     out = []
     valid = features.loc[features["status"] != "invalid", ["participant", "trial", "t_onset"]]

@@ -3,7 +3,8 @@
 Every function takes data (arrays, DataFrames, result objects) and returns a matplotlib Figure;
 :func:`save` writes it as PNG and SVG. Axes carry units. One submodule per chapter's idea:
 ``smoothness`` (SPARC), ``experiment`` (the data), ``clusters`` (prototypes), ``robot`` (transfer),
-``dynamics`` (accelerations, torques, execution, time scales), ``scale`` (time and memory against N).
+``dynamics`` (accelerations, torques, execution, time scales), ``recordings`` (noise and
+filters), ``scale`` (time and memory against N).
 This package may import the other skilllib modules; none of them imports it.
 """
 
@@ -40,8 +41,10 @@ from .experiment import (
     plot_segmentation,
     plot_sparc_vs_length,
     plot_trials_by_participant,
+    segmentation_examples,
     threshold_bound,
 )
+from .recordings import plot_residual_analysis, plot_sparc_against_reference
 from .robot import (
     JOINT_COLORS,
     plot_frame_mapping,
@@ -49,10 +52,18 @@ from .robot import (
     plot_robot_joints,
     plot_robot_pose,
     plot_simple6_figure,
+    plot_sparc_stretch,
     plot_start_poses,
+    plot_time_scaled_plane,
 )
 from .scale import plot_scaling
-from .smoothness import plot_sparc_against, plot_sparc_spectra, plot_speeds_and_spectra
+from .smoothness import (
+    plot_padded_spectra,
+    plot_short_segments,
+    plot_sparc_against,
+    plot_sparc_spectra,
+    plot_speeds_and_spectra,
+)
 
 __all__ = [
     "plt",
@@ -65,14 +76,19 @@ __all__ = [
     "plot_sparc_spectra",
     "plot_speeds_and_spectra",
     "plot_sparc_against",
+    "plot_padded_spectra",
+    "plot_short_segments",
     "plot_trials_by_participant",
     "plot_segmentation",
+    "segmentation_examples",
     "plot_participant_features",
     "plot_contact_speeds",
     "plot_feature_space",
     "plot_feature_overview",
     "plot_estimates_vs_truth",
     "plot_sparc_vs_length",
+    "plot_residual_analysis",
+    "plot_sparc_against_reference",
     "threshold_bound",
     "plot_silhouette_sweep",
     "plot_silhouettes",
@@ -87,6 +103,8 @@ __all__ = [
     "plot_start_poses",
     "plot_joint_velocities",
     "plot_frame_mapping",
+    "plot_sparc_stretch",
+    "plot_time_scaled_plane",
     "plot_joint_accelerations",
     "plot_joint_torques",
     "plot_executed_speed",

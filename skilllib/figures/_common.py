@@ -15,9 +15,27 @@ DENSE = 20_000
 
 
 def save(fig: plt.Figure, out_dir: str | Path, name: str, dpi: int = 150) -> list[Path]:
-    """Write ``fig`` as ``out_dir/name.png`` and ``out_dir/name.svg``; return both paths. In the SVG, a
-    plot holding more than :data:`DENSE` points in all (a corpus of 10^5 trials) has its data layers
-    rasterized at ``dpi``, so that the file stays small (axes, text and sparse layers stay vectors)."""
+    """Write ``fig`` as ``out_dir/name.png`` and ``out_dir/name.svg``; return both paths.
+
+    In the SVG, a plot holding more than :data:`DENSE` points in all (a corpus of 10^5 trials) has its data
+    layers rasterized at ``dpi``, so that the file stays small (axes, text and sparse layers stay vectors).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    out_dir : str or pathlib.Path
+        The folder (text), created when missing.
+    name : str
+        The file name without extension (text).
+    dpi : int
+        Resolution of the PNG and of the rasterized SVG layers (dots per inch).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The PNG and the SVG written.
+    """
     for ax in fig.axes:
         layers = [
             (c, max(len(c.get_offsets()), sum(len(p.vertices) for p in c.get_paths()))) for c in ax.collections

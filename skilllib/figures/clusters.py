@@ -16,9 +16,24 @@ def _cluster_color(c: int) -> tuple[float, float, float]:
 
 
 def plot_silhouette_sweep(sweep: SilhouetteSweep, chosen_k: int | None = None) -> plt.Figure:
-    """Average silhouette (Rousseeuw 1987) against k; filled markers = valid k (average > 0 and every
-    cluster has a trial above the average, as in scikit-learn's silhouette example), open = not valid.
-    Subsample estimates (more trials than ``SILHOUETTE_EXACT_MAX``) get bars of +- 1 SD over the repeats."""
+    """Average silhouette (Rousseeuw 1987) against k, valid k filled.
+
+    Filled markers = valid k (average > 0 and every cluster has a trial above the average, as in
+    scikit-learn's silhouette example), open = not valid. Subsample estimates (more trials than
+    ``SILHOUETTE_EXACT_MAX``) get bars of +- 1 SD over the repeats.
+
+    Parameters
+    ----------
+    sweep : SilhouetteSweep
+        The sweep of :func:`skilllib.prototypes.silhouette_sweep`.
+    chosen_k : int or None
+        The k to mark (dimensionless); None: none.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; silhouette (dimensionless) against k.
+    """
     ks, scores = sweep.ks, sweep.scores
     valid = np.array([sweep.results[k].valid for k in ks])
     fig, ax = plt.subplots(figsize=(5.5, 3.4))
@@ -61,9 +76,22 @@ def plot_silhouette_sweep(sweep: SilhouetteSweep, chosen_k: int | None = None) -
 
 
 def plot_silhouettes(result: PrototypeResult) -> plt.Figure:
-    """Silhouette plot ("knife plot", as in scikit-learn's example) of one clustering: each cluster's
-    trial silhouettes sorted, the average as a dashed line; clusters marked * lie wholly below it. For a
-    subsample estimate (``result.silhouette_method == "subsample"``) the pooled subsamples' trials."""
+    """Silhouette plot ("knife plot", as in scikit-learn's example) of one clustering.
+
+    Each cluster's trial silhouettes sorted, the average as a dashed line; clusters marked * lie wholly
+    below it. For a subsample estimate (``result.silhouette_method == "subsample"``) the pooled subsamples'
+    trials.
+
+    Parameters
+    ----------
+    result : PrototypeResult
+        The clustering of :func:`skilllib.prototypes.fit_prototypes`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; silhouettes (dimensionless) by cluster.
+    """
     s, labels, avg = result.silhouette_samples, result.silhouette_labels, result.silhouette
     est = result.silhouette_estimate
     failing = set(result.failing_clusters())
@@ -103,8 +131,20 @@ def plot_silhouettes(result: PrototypeResult) -> plt.Figure:
 
 
 def plot_clusters(result: PrototypeResult) -> plt.Figure:
-    """PV-SPARC tuples coloured by cluster, with the centres (x) and the prototype trials (circled):
-    the paper's Fig. 2a, clusters numbered by centre PV."""
+    """PV-SPARC tuples coloured by cluster, with the centres (x) and the prototype trials (circled).
+
+    The paper's Fig. 2a, clusters numbered by centre PV.
+
+    Parameters
+    ----------
+    result : PrototypeResult
+        The clustering of :func:`skilllib.prototypes.fit_prototypes`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; PV (m/s) against SPARC (dimensionless).
+    """
     d = result.data
     fig, ax = plt.subplots(figsize=(5.5, 4))
     for c in range(result.k):
@@ -152,8 +192,18 @@ def plot_prototype_profiles(
 ) -> plt.Figure:
     """Speed profiles of the prototypes labelled with their PV and SPARC: the paper's Fig. 2b.
 
-    ``profiles[i]`` is (t in s, speed in m/s) of the prototype of cluster i, in the row order of
-    ``prototypes`` (``PrototypeResult.prototypes``: columns pv, sparc; index = cluster id).
+    Parameters
+    ----------
+    profiles : list of tuple of numpy.ndarray
+        ``profiles[i]`` is (t in s, speed in m/s) of the prototype of cluster i, in the row order of
+        ``prototypes``.
+    prototypes : pandas.DataFrame
+        ``PrototypeResult.prototypes``: columns pv (m/s), sparc (dimensionless); index = cluster id.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; speed (m/s) against time (s).
     """
     if len(profiles) != len(prototypes):
         raise ValueError(f"{len(profiles)} speed profiles for {len(prototypes)} prototypes")
@@ -174,10 +224,24 @@ def plot_prototype_profiles(
 
 
 def plot_stability(ari: dict[str, np.ndarray], seed: int = 0) -> plt.Figure:
-    """Adjusted Rand indices (dimensionless, 1 = same partition) as one jittered strip per entry of
-    ``ari`` (e.g. refits with other seeds or on bootstrap resamples, see
-    :func:`skilllib.prototypes.seed_stability` and :func:`~skilllib.prototypes.bootstrap_stability`),
-    each with its median as a black bar. ``", "`` in a name becomes a line break; ``seed`` fixes the jitter.
+    """Adjusted Rand indices as one jittered strip per entry of ``ari``, each with its median.
+
+    ARI is dimensionless, 1 = same partition; entries are e.g. refits with other seeds or on bootstrap
+    resamples, see :func:`skilllib.prototypes.seed_stability` and
+    :func:`~skilllib.prototypes.bootstrap_stability`; the median is a black bar. ``", "`` in a name becomes
+    a line break.
+
+    Parameters
+    ----------
+    ari : dict of str to numpy.ndarray
+        Name (text) -> adjusted Rand indices (dimensionless).
+    seed : int
+        The seed of the jitter (dimensionless).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; ARI (dimensionless) per entry.
     """
     if not ari:
         raise ValueError("no ARI series to plot")
@@ -193,9 +257,22 @@ def plot_stability(ari: dict[str, np.ndarray], seed: int = 0) -> plt.Figure:
 
 
 def plot_sparc_sensitivity(sens: SparcSensitivity) -> plt.Figure:
-    """Left: each selected trial's SPARC under every other setting against the reference setting
-    (identity dashed; trials whose band that setting's fc ended drawn as rings). Right: average silhouette
-    against k under every setting. ``sens``: :func:`skilllib.prototypes.sparc_sensitivity`."""
+    """SPARC and silhouettes under every SPARC setting against the reference setting.
+
+    Left: each selected trial's SPARC under every other setting against the reference setting (identity
+    dashed; trials whose band that setting's fc ended drawn as rings). Right: average silhouette against k
+    under every setting.
+
+    Parameters
+    ----------
+    sens : SparcSensitivity
+        The result of :func:`skilllib.prototypes.sparc_sensitivity`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; SPARC and silhouettes (dimensionless).
+    """
     fig, (a, b) = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained")
     ref = sens.reference.selected["sparc"].to_numpy()
     for i, run in enumerate(sens.runs[1:], start=1):
@@ -228,9 +305,21 @@ def plot_sparc_sensitivity(sens: SparcSensitivity) -> plt.Figure:
 
 
 def plot_cluster_participants(table: pd.DataFrame) -> plt.Figure:
-    """Trials per cluster (rows, 0 = lowest centre PV) and participant (columns) as a heat map with the
-    counts written in; ``table`` as :func:`skilllib.prototypes.cluster_participant_table` (its ``all``
-    totals are left out)."""
+    """Trials per cluster and participant as a heat map with the counts written in.
+
+    Rows are clusters (0 = lowest centre PV), columns participants.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        As :func:`skilllib.prototypes.cluster_participant_table` (counts, dimensionless; its ``all``
+        totals are left out).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; the heat map of counts (dimensionless).
+    """
     t = table.drop(index="all", columns="all", errors="ignore")
     fig, ax = plt.subplots(figsize=(1.2 + 0.55 * t.shape[1], 0.9 + 0.45 * t.shape[0]), layout="constrained")
     im = ax.imshow(t.to_numpy(), cmap="Greys", aspect="auto")

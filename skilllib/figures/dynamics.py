@@ -95,9 +95,26 @@ def _joint_figure(
 def plot_joint_accelerations(
     dyns: Sequence[JointDynamics], titles: Sequence[str] | None = None, ncols: int = 3
 ) -> plt.Figure:
-    """Joint accelerations qdd_j(t) (rad/s^2) of each trajectory against time (s), one panel each, with the
-    acceleration limits dashed (when the arm has them); the title gives the peak and the stretch s_a the
-    limits ask for alone. qdd = J^+ (a - Jdot qd) (+ the pseudo-inverse's null-space term; skilllib.robot)."""
+    """Joint accelerations qdd_j(t) of each trajectory against time, one panel each.
+
+    Accelerations in rad/s^2 against time in s, with the acceleration limits dashed (when the arm has
+    them); the title gives the peak and the stretch s_a the limits ask for alone.
+    qdd = J^+ (a - Jdot qd) (+ the pseudo-inverse's null-space term; skilllib.robot).
+
+    Parameters
+    ----------
+    dyns : sequence of JointDynamics
+        The trajectories' dynamics (rad/s^2, N m).
+    titles : sequence of str or None
+        A title per panel (text); None: default titles.
+    ncols : int
+        Panels per row (dimensionless).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; joint acceleration (rad/s^2) against time (s).
+    """
 
     def describe(d: JointDynamics) -> str:
         s_a = d.time_scales()["acceleration"]
@@ -122,10 +139,27 @@ def plot_joint_accelerations(
 def plot_joint_torques(
     dyns: Sequence[JointDynamics], titles: Sequence[str] | None = None, ncols: int = 3
 ) -> plt.Figure:
-    """Joint torques tau_j(t) (roboticstoolbox ``rne``: rigid body, motor inertia, friction) of each
-    trajectory against time (s), each divided by its joint's torque limit (so that +-1, dashed, is the
-    limit of every joint); thin dotted lines: the same path traversed very slowly (gravity and Coulomb
-    friction only: what no time scaling removes). Without torque limits the torques in N m."""
+    """Joint torques tau_j(t) of each trajectory against time, each divided by its joint's torque limit.
+
+    Torques from roboticstoolbox ``rne`` (rigid body, motor inertia, friction) against time (s), so that
+    +-1, dashed, is the limit of every joint; thin dotted lines: the same path traversed very slowly
+    (gravity and Coulomb friction only: what no time scaling removes). Without torque limits the torques
+    in N m.
+
+    Parameters
+    ----------
+    dyns : sequence of JointDynamics
+        The trajectories' dynamics (torques in N m).
+    titles : sequence of str or None
+        A title per panel (text); None: default titles.
+    ncols : int
+        Panels per row (dimensionless).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; torque / limit (dimensionless), or N m, against time (s).
+    """
     if not dyns or any(d.tau is None for d in dyns):
         raise ValueError("torques need at least one trajectory on an arm with dynamic parameters")
     limited = all(d.tau_limits is not None for d in dyns)
@@ -162,11 +196,27 @@ def plot_joint_torques(
 def plot_executed_speed(
     assessments: Sequence[Assessment], titles: Sequence[str] | None = None, ncols: int = 3
 ) -> plt.Figure:
-    """Commanded and executed tool speed (m/s) against time (s), one panel per prototype: the prototype's
-    speed at its samples (black dots), the simulated execution as recorded (coloured, controller rate) and
-    the execution slowed by the time scale s of every limit, drawn on the recorded time axis (t / s) with its
-    speed times s (dashed), so that a faithful slowed execution lies on the black dots. The title gives SPARC
-    of the three."""
+    """Commanded and executed tool speed against time, one panel per prototype.
+
+    Speed in m/s against time in s: the prototype's speed at its samples (black dots), the simulated
+    execution as recorded (coloured, controller rate) and the execution slowed by the time scale s of every
+    limit, drawn on the recorded time axis (t / s) with its speed times s (dashed), so that a faithful
+    slowed execution lies on the black dots. The title gives SPARC of the three.
+
+    Parameters
+    ----------
+    assessments : sequence of Assessment
+        The assessments of :mod:`skilllib.robot` (speeds in m/s, times in s).
+    titles : sequence of str or None
+        A title per panel (text); None: default titles.
+    ncols : int
+        Panels per row (dimensionless).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; tool speed (m/s) against time (s).
+    """
     if not assessments:
         raise ValueError("plot_executed_speed needs at least one Assessment")
     fig, axs, height = _panels(len(assessments), ncols)
@@ -224,8 +274,20 @@ def plot_executed_speed(
 
 
 def dynamics_figures(assessments: Sequence[Assessment]) -> list[tuple[plt.Figure, str]]:
-    """The pipeline's figures of the assessments of one arm, with their file names: joint accelerations,
-    joint torques (arms with dynamic parameters), executed speed and time scales."""
+    """The pipeline's figures of the assessments of one arm, with their file names.
+
+    Joint accelerations, joint torques (arms with dynamic parameters), executed speed and time scales.
+
+    Parameters
+    ----------
+    assessments : sequence of Assessment
+        The assessments of one arm (rad/s^2, N m, m/s).
+
+    Returns
+    -------
+    list of tuple
+        (figure, file name without extension (text)) pairs.
+    """
     dyns = [a.dynamics for a in assessments]
     out = [(plot_joint_accelerations(dyns), "joint_accelerations")]
     if all(d.tau is not None for d in dyns):
@@ -236,9 +298,22 @@ def dynamics_figures(assessments: Sequence[Assessment]) -> list[tuple[plt.Figure
 
 
 def plot_time_scales(by_arm: Mapping[str, Sequence[JointDynamics]]) -> plt.Figure:
-    """The stretch s each limit asks for alone (markers: velocity, acceleration, torque; absent where the arm
-    has no such limit) and the one that satisfies all (black dash, labelled with the binding limit), per
-    prototype (cluster) and arm (one panel each). s = 1: executable as recorded."""
+    """The stretch s each limit asks for alone and the one that satisfies all, per prototype and arm.
+
+    Markers: velocity, acceleration, torque (absent where the arm has no such limit); black dash: the one
+    that satisfies all, labelled with the binding limit; per prototype (cluster) and arm (one panel each).
+    s = 1: executable as recorded.
+
+    Parameters
+    ----------
+    by_arm : mapping of str to sequence of JointDynamics
+        Arm name (text) -> the dynamics of its prototypes (time scales dimensionless).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; time scale s (dimensionless) per prototype.
+    """
     if not by_arm:
         raise ValueError("plot_time_scales needs at least one arm")
     n = len(by_arm)

@@ -41,8 +41,25 @@ MAX_FIGURE_PARTICIPANTS = 12
 
 
 def few_participants(features: pd.DataFrame, most: int = MAX_FIGURE_PARTICIPANTS) -> tuple[pd.DataFrame, str]:
-    """The rows of the first ``most`` participants (natural order of their ids) and a note saying so
-    ("" when all are kept): a corpus of a thousand participants would give a thousand panels."""
+    """The rows of the first ``most`` participants (natural order of their ids) and a note saying so.
+
+    The note is "" when all are kept: a corpus of a thousand participants would give a thousand panels.
+
+    Parameters
+    ----------
+    features : pandas.DataFrame
+        The per-trial table of :func:`skilllib.features.trial_features` (pv and contact_speed in m/s,
+        duration in s, sparc dimensionless).
+    most : int
+        The most participants kept (dimensionless).
+
+    Returns
+    -------
+    rows : pandas.DataFrame
+        The rows of the kept participants (same columns and units).
+    note : str
+        What was left out, or "" (text).
+    """
     parts = sort_ids(features["participant"].unique())
     if len(parts) <= most:
         return features, ""
@@ -53,9 +70,27 @@ def few_participants(features: pd.DataFrame, most: int = MAX_FIGURE_PARTICIPANTS
 def plot_trials_by_participant(
     recordings: Recordings, features: pd.DataFrame, window: tuple[float, float] = (-0.9, 0.3)
 ) -> plt.Figure:
-    """The paper's Fig. 1b redrawn: vertical position y (m) and speed (m/s, approach only) of every valid
-    trial against time from contact (s), one column per participant (two rows of participants).
-    Selected trials in the participant's colour, excluded ones in grey."""
+    """The paper's Fig. 1b redrawn: height and speed of every valid trial against time from contact.
+
+    Vertical position y (m) and speed (m/s, approach only) against time from contact (s), one column per
+    participant (two rows of participants). Selected trials in the participant's colour, excluded ones in
+    grey.
+
+    Parameters
+    ----------
+    recordings : Recordings
+        The recordings (t in s, positions in m).
+    features : pandas.DataFrame
+        The per-trial table of :func:`skilllib.features.trial_features` (pv and contact_speed in m/s,
+        duration in s, sparc dimensionless).
+    window : tuple of float
+        The time span shown, relative to contact (s).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; y (m) and speed (m/s) against time (s).
+    """
     f = features[features["status"] != "invalid"]
     parts = sort_ids(f["participant"].unique())
     ncol = int(np.ceil(len(parts) / 2))
@@ -90,10 +125,56 @@ def plot_trials_by_participant(
     return fig
 
 
+def segmentation_examples(features: pd.DataFrame, speeds: tuple[float, float] = (1.0, 0.2)) -> list[tuple]:
+    """The four trials :func:`plot_segmentation` shows in the chapter on the experiment.
+
+    Parameters
+    ----------
+    features : pandas.DataFrame
+        The per-trial table of :func:`skilllib.features.trial_features` (``status``, ``sparc``,
+        ``contact_speed`` in m/s).
+    speeds : tuple of float
+        Contact speeds (m/s) of the two excluded examples: the valid trials nearest them are taken.
+
+    Returns
+    -------
+    list of tuple
+        ``(participant, trial)`` pairs (ids as text): the selected trial with the median SPARC, the
+        selected trial with the lowest SPARC (the least smooth), and the valid trials whose contact
+        speeds lie nearest ``speeds``.
+    """
+    valid = features[features["status"] != "invalid"]
+    sel = valid[valid["status"] == "selected"]
+    rows = [
+        (sel["sparc"] - sel["sparc"].median()).abs().idxmin(),
+        sel["sparc"].idxmin(),
+        *[(valid["contact_speed"] - v).abs().idxmin() for v in speeds],
+    ]
+    return [tuple(features.loc[r, ["participant", "trial"]]) for r in rows]
+
+
 def plot_segmentation(recordings: Recordings, features: pd.DataFrame, keys: list[tuple]) -> plt.Figure:
-    """Onset/contact segmentation of example trials: y (m) and approach speed (m/s) against time (s); the
-    onset threshold, the onset sample, the last sample before contact (the contact speed), the first
-    contact sample and the segment (shaded). One legend for all panels; the contact speed in the titles."""
+    """Onset/contact segmentation of example trials: y and approach speed against time.
+
+    y (m) and approach speed (m/s) against time (s); the onset threshold, the onset sample, the last sample
+    before contact (the contact speed), the first contact sample and the segment (shaded). One legend for
+    all panels; the contact speed in the titles.
+
+    Parameters
+    ----------
+    recordings : Recordings
+        The recordings (t in s, positions in m).
+    features : pandas.DataFrame
+        The per-trial table of :func:`skilllib.features.trial_features` (pv and contact_speed in m/s,
+        duration in s, sparc dimensionless).
+    keys : list of tuple
+        The ``(participant, trial)`` ids of the examples (text), e.g. :func:`segmentation_examples`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; one column per example: y (m) and speed (m/s) against time (s).
+    """
     fig, axs = plt.subplots(2, len(keys), figsize=(2.6 * len(keys), 5.0), sharex="col", squeeze=False)
     idx = features.set_index(["participant", "trial"])
     for j, (p, tr) in enumerate(keys):
@@ -124,8 +205,22 @@ def plot_segmentation(recordings: Recordings, features: pd.DataFrame, keys: list
 
 
 def plot_participant_features(features: pd.DataFrame) -> plt.Figure:
-    """Per participant, peak speed (m/s), contact speed (m/s, the selection window shaded), duration (s)
-    and SPARC of every valid trial (box: quartiles; points: trials, selected in colour)."""
+    """Per participant, peak speed, contact speed, duration and SPARC of every valid trial.
+
+    Peak speed (m/s), contact speed (m/s, the selection window shaded), duration (s) and SPARC (box:
+    quartiles; points: trials, selected in colour).
+
+    Parameters
+    ----------
+    features : pandas.DataFrame
+        The per-trial table of :func:`skilllib.features.trial_features` (pv and contact_speed in m/s,
+        duration in s, sparc dimensionless).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; four panels (m/s, m/s, s, dimensionless).
+    """
     f = features[features["status"] != "invalid"]
     parts = sort_ids(f["participant"].unique())
     cols = [
@@ -155,7 +250,23 @@ def plot_participant_features(features: pd.DataFrame) -> plt.Figure:
 
 
 def plot_contact_speeds(features: pd.DataFrame, bin_width: float = 0.05, ax: plt.Axes | None = None) -> plt.Figure:
-    """Histogram of contact speeds (m/s) of the valid trials; the selection window shaded."""
+    """Histogram of contact speeds of the valid trials; the selection window shaded.
+
+    Parameters
+    ----------
+    features : pandas.DataFrame
+        The per-trial table of :func:`skilllib.features.trial_features` (pv and contact_speed in m/s,
+        duration in s, sparc dimensionless).
+    bin_width : float
+        The width of a bin (m/s).
+    ax : matplotlib.axes.Axes or None
+        The axes to draw into; None: a new figure.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; counts (dimensionless) against contact speed (m/s).
+    """
     v = features.loc[features["status"] != "invalid", "contact_speed"].to_numpy()
     n_sel = int((features["status"] == "selected").sum())
     fig, ax = plt.subplots(figsize=(5.5, 3.2)) if ax is None else (ax.figure, ax)
@@ -174,8 +285,21 @@ def plot_contact_speeds(features: pd.DataFrame, bin_width: float = 0.05, ax: plt
 
 
 def threshold_bound(amp_th: float = DEFAULT_AMP_TH) -> float:
-    """About the highest SPARC a band ended by the amplitude threshold can have: the chord from (0, 1) to
-    (1, amp_th), -sqrt(1 + (1 - amp_th)**2) (chapter 1). Higher values come from bands capped by fc."""
+    """About the highest SPARC a band ended by the amplitude threshold can have.
+
+    The chord from (0, 1) to (1, amp_th), -sqrt(1 + (1 - amp_th)**2) (chapter 2). Higher values come from
+    bands capped by fc.
+
+    Parameters
+    ----------
+    amp_th : float
+        The amplitude threshold, a fraction of the peak magnitude (dimensionless).
+
+    Returns
+    -------
+    float
+        The bound on SPARC (dimensionless).
+    """
     return -float(np.hypot(1.0, 1.0 - amp_th))
 
 
@@ -207,9 +331,27 @@ def _mark_capped(ax: plt.Axes, f: pd.DataFrame, x: str, amp_th: float) -> None:
 def plot_feature_space(
     features: pd.DataFrame, ax: plt.Axes | None = None, amp_th: float = DEFAULT_AMP_TH
 ) -> plt.Figure:
-    """Peak speed PV (m/s) against SPARC: selected trials coloured by participant, excluded in grey;
-    trials whose SPARC band the maximum cut-off fc ended (``sparc_capped``) ringed, and the dashed line
-    :func:`threshold_bound` above which only such trials can lie."""
+    """Peak speed PV against SPARC: selected trials coloured by participant, excluded in grey.
+
+    Trials whose SPARC band the maximum cut-off fc ended (``sparc_capped``) ringed, and the dashed line
+    :func:`threshold_bound` above which only such trials can lie.
+
+    Parameters
+    ----------
+    features : pandas.DataFrame
+        The per-trial table of :func:`skilllib.features.trial_features` (pv and contact_speed in m/s,
+        duration in s, sparc dimensionless).
+    ax : matplotlib.axes.Axes or None
+        The axes to draw into; None: a new figure.
+    amp_th : float
+        The amplitude threshold of the SPARC bands, a fraction of the peak magnitude (dimensionless), for
+        the bound of :func:`threshold_bound`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; PV (m/s) against SPARC (dimensionless).
+    """
     f = features[features["status"] != "invalid"]
     parts = sort_ids(f["participant"].unique())
     fig, ax = plt.subplots(figsize=(6, 4)) if ax is None else (ax.figure, ax)
@@ -229,10 +371,28 @@ def plot_feature_space(
 
 
 def plot_sparc_vs_length(features: pd.DataFrame, fs: float, amp_th: float = DEFAULT_AMP_TH) -> plt.Figure:
-    """Left: SPARC of every valid trial against its segment length N in samples (top axis: the duration
-    N / fs in s); selected trials blue, excluded grey, bands ended by fc ringed, the threshold-ended bound
-    dashed. Right: the share of bands ended by fc at each N (bars; valid trials), with the number of
-    trials at each N."""
+    """SPARC of every valid trial against its segment length, and the share of bands ended by fc.
+
+    Left: SPARC against the segment length N in samples (top axis: the duration N / fs in s); selected
+    trials blue, excluded grey, bands ended by fc ringed, the threshold-ended bound dashed. Right: the share
+    of bands ended by fc at each N (bars; valid trials), with the number of trials at each N.
+
+    Parameters
+    ----------
+    features : pandas.DataFrame
+        The per-trial table of :func:`skilllib.features.trial_features` (pv and contact_speed in m/s,
+        duration in s, sparc dimensionless).
+    fs : float
+        The sampling rate (Hz), for the duration axis.
+    amp_th : float
+        The amplitude threshold of the SPARC bands, a fraction of the peak magnitude (dimensionless), for
+        the bound of :func:`threshold_bound`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; SPARC (dimensionless) and the capped share against N (samples).
+    """
     f = features[features["status"] != "invalid"]
     sel = (f["status"] == "selected").to_numpy()
     n = f["n"].astype(float).to_numpy()
@@ -258,8 +418,25 @@ def plot_sparc_vs_length(features: pd.DataFrame, fs: float, amp_th: float = DEFA
 
 
 def plot_feature_overview(features: pd.DataFrame, amp_th: float = DEFAULT_AMP_TH) -> plt.Figure:
-    """The pipeline's features figure: contact-speed histogram with the selection window (m/s) and
-    PV (m/s) against SPARC of the valid trials (:func:`plot_feature_space`)."""
+    """The pipeline's features figure: contact-speed histogram and PV against SPARC.
+
+    The contact-speed histogram with the selection window (m/s) and PV (m/s) against SPARC of the valid
+    trials (:func:`plot_feature_space`).
+
+    Parameters
+    ----------
+    features : pandas.DataFrame
+        The per-trial table of :func:`skilllib.features.trial_features` (pv and contact_speed in m/s,
+        duration in s, sparc dimensionless).
+    amp_th : float
+        The amplitude threshold of the SPARC bands, a fraction of the peak magnitude (dimensionless), for
+        the bound of :func:`threshold_bound`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; two panels (m/s; m/s against SPARC).
+    """
     fig, (a, b) = plt.subplots(1, 2, figsize=(12, 3.8))
     plot_contact_speeds(features, ax=a)
     plot_feature_space(features, ax=b, amp_th=amp_th)
@@ -268,8 +445,24 @@ def plot_feature_overview(features: pd.DataFrame, amp_th: float = DEFAULT_AMP_TH
 
 
 def plot_estimates_vs_truth(features: pd.DataFrame, truth: pd.DataFrame) -> plt.Figure:
-    """Features estimated from the 60 Hz samples against the generator's noise-free truth: peak speed,
-    contact speed (m/s) and duration (s); the identity line dashed."""
+    """Features estimated from the 60 Hz samples against the generator's noise-free truth.
+
+    Peak speed, contact speed (m/s) and duration (s); the identity line dashed.
+
+    Parameters
+    ----------
+    features : pandas.DataFrame
+        The per-trial table of :func:`skilllib.features.trial_features` (pv and contact_speed in m/s,
+        duration in s, sparc dimensionless).
+    truth : pandas.DataFrame
+        The generator's ground truth per trial (:func:`skilllib.cohort.generate_cohort`: speeds in m/s,
+        times in s).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; three panels (m/s, m/s, s).
+    """
     m = features[features["status"] != "invalid"].merge(truth, on=["participant", "trial"], suffixes=("", "_true"))
     m = m.assign(duration_true=m["t_contact_true"] - m["t_onset_true"])
     fig, axs = plt.subplots(1, 3, figsize=(10, 3.3))

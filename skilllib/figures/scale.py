@@ -19,10 +19,23 @@ SERIES = {
 
 
 def plot_scaling(rows: Sequence[dict[str, Any]]) -> plt.Figure:
-    """Top: wall time (s) against trials, log-log, per series, with a dotted line of slope 1 over the last
+    """Wall time and peak memory against the number of trials, per series.
+
+    Top: wall time (s) against trials, log-log, per series, with a dotted line of slope 1 over the last
     decade through the in-memory CSV series' largest run; bottom: peak memory (MB) of the main process
-    (solid) and of the
-    largest Dask worker (dashed). Failed runs are left out (the table beside the figure lists them)."""
+    (solid) and of the largest Dask worker (dashed). Failed runs are left out (the table beside the figure
+    lists them).
+
+    Parameters
+    ----------
+    rows : sequence of dict
+        The benchmark's runs: series name (text), trials (dimensionless), wall time (s), memory (MB).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; time (s) and memory (MB) against trials.
+    """
     fig, (a, b) = plt.subplots(2, 1, figsize=(6.4, 8.2))
     for (mode, kind), (label, color) in SERIES.items():
         ok = sorted(

@@ -7,16 +7,32 @@ from collections.abc import Mapping, Sequence
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ..smoothness import SPARC_PARAMS, SparcSpectrum, sparc_spectrum
+from ..smoothness import SPARC_PARAMS, SparcBands, SparcSpectrum, sparc_spectrum
 from ._common import CLUSTER_COLORS
 
 
 def plot_sparc_spectra(
     spectra: Mapping[str, SparcSpectrum], ax: plt.Axes | None = None, fmax: float | None = None
 ) -> plt.Figure:
-    """Normalised Fourier magnitude spectra ``|V(f)| / V(0)`` against frequency (Hz): the band whose arc length
-    SPARC measures drawn thick, the rest thin; the amplitude threshold (dashed), the maximum cut-off fc
-    (dotted) and each adaptive cut-off (dot). Labels carry the SPARC values."""
+    """Normalised Fourier magnitude spectra ``|V(f)| / V(0)`` against frequency (Hz).
+
+    The band whose arc length SPARC measures drawn thick, the rest thin; the amplitude threshold (dashed),
+    the maximum cut-off fc (dotted) and each adaptive cut-off (dot). Labels carry the SPARC values.
+
+    Parameters
+    ----------
+    spectra : mapping of str to SparcSpectrum
+        Label (text) -> the :func:`skilllib.smoothness.sparc_spectrum` of a profile (frequencies in Hz).
+    ax : matplotlib.axes.Axes or None
+        The axes to draw into; None: a new figure.
+    fmax : float or None
+        Highest frequency shown (Hz); None: 1.5 times the largest of fc and the cut-offs.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; magnitude (dimensionless) against frequency (Hz).
+    """
     fig, ax = (ax.figure, ax) if ax is not None else plt.subplots(figsize=(5.5, 3.4))
     first = next(iter(spectra.values()))
     fmax = fmax if fmax is not None else 1.5 * max(first.fc, max(s.cutoff for s in spectra.values()))
@@ -49,8 +65,26 @@ def plot_sparc_spectra(
 def plot_speeds_and_spectra(
     speeds: Mapping[str, np.ndarray], fs: float, fmax: float | None = None, **sparc_params: float
 ) -> plt.Figure:
-    """Speed profiles (m/s against s, sampled at ``fs`` Hz) beside their normalised spectra and SPARC
-    bands (:func:`plot_sparc_spectra`); ``sparc_params`` default to ``SPARC_PARAMS``."""
+    r"""Speed profiles beside their normalised spectra and SPARC bands (:func:`plot_sparc_spectra`).
+
+    Speeds in m/s against time in s, sampled at ``fs`` Hz; ``sparc_params`` default to ``SPARC_PARAMS``.
+
+    Parameters
+    ----------
+    speeds : mapping of str to numpy.ndarray
+        Label (text) -> speed profile (m/s).
+    fs : float
+        The sampling rate (Hz).
+    fmax : float or None
+        Highest frequency shown (Hz); None: as :func:`plot_sparc_spectra`.
+    \*\*sparc_params : float
+        SPARC's parameters ``fc`` (Hz), ``amp_th`` and ``padlevel`` (dimensionless).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; speed (m/s) against time (s), and the spectra against frequency (Hz).
+    """
     params = {**SPARC_PARAMS, **sparc_params}
     fig, (ax_v, ax_f) = plt.subplots(1, 2, figsize=(10, 3.4), layout="constrained")
     spectra = {}
@@ -72,7 +106,26 @@ def plot_sparc_against(
     ylabel: str = "SPARC",
     ax: plt.Axes | None = None,
 ) -> plt.Figure:
-    """One or more smoothness values against a parameter of the movement (e.g. delay, noise level)."""
+    """One or more smoothness values against a parameter of the movement (e.g. delay, noise level).
+
+    Parameters
+    ----------
+    x : sequence of float
+        The parameter's values (in the unit ``xlabel`` names, e.g. s).
+    curves : mapping of str to sequence of float
+        Label (text) -> the smoothness value at each ``x`` (dimensionless, e.g. SPARC).
+    xlabel : str
+        The x axis label, with its unit (text).
+    ylabel : str
+        The y axis label (text).
+    ax : matplotlib.axes.Axes or None
+        The axes to draw into; None: a new figure.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; the curves against ``x``.
+    """
     fig, ax = (ax.figure, ax) if ax is not None else plt.subplots(figsize=(5.5, 3.4))
     for i, (label, y) in enumerate(curves.items()):
         ax.plot(x, y, "o-", ms=3, color=CLUSTER_COLORS[i % 10], label=label)
@@ -80,4 +133,84 @@ def plot_sparc_against(
     ax.set_ylabel(ylabel)
     if len(curves) > 1:
         ax.legend(fontsize="small", frameon=False)
+    return fig
+
+
+def plot_padded_spectra(
+    speed: np.ndarray, fs: float, padlevels: Sequence[int] = (0, 2, 4), fmax: float = 3.0
+) -> plt.Figure:
+    """The normalised spectrum of one speed profile on the FFT grids of several zero paddings.
+
+    Parameters
+    ----------
+    speed : numpy.ndarray
+        Speed samples (m/s).
+    fs : float
+        Sampling rate (Hz).
+    padlevels : sequence of int
+        Zero paddings, ``nfft = 2**(ceil(log2 N) + padlevel)`` (dimensionless).
+    fmax : float
+        Highest frequency shown (Hz).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The band of each grid as the polygon through its bins (normalised magnitude against frequency in
+        Hz), labelled with its nfft and SPARC.
+    """
+    fig, ax = plt.subplots(figsize=(5.5, 3.2))
+    for p in padlevels:
+        s = sparc_spectrum(speed, fs, padlevel=p)
+        label = f"padlevel {p}: nfft {s.nfft}, SPARC {s.sparc:.3f}"
+        ax.plot(s.f_sel, s.Mf_sel, ".-", ms=4, lw=1, label=label)
+    ax.set_xlim(0, fmax)
+    ax.set_xlabel("frequency f (Hz)")
+    ax.set_ylabel(r"normalised magnitude $|V(f)|\,/\,V(0)$")
+    ax.legend(frameon=False)
+    return fig
+
+
+def plot_short_segments(
+    n: Sequence[int], bands: Mapping[tuple[float, float], SparcBands], amp_th: float = SPARC_PARAMS["amp_th"]
+) -> plt.Figure:
+    """SPARC and the end of its band against the length of segments of one shape.
+
+    Parameters
+    ----------
+    n : sequence of int
+        Segment lengths (samples at 60 Hz).
+    bands : mapping
+        ``{(contact_ratio, fc): SparcBands}``, the :func:`skilllib.sparc_bands` of the segments at each
+        ``n``, for a contact at ``contact_ratio`` of the peak speed (a fraction) and a maximum cut-off
+        ``fc`` (Hz). One colour per ratio; the highest fc solid, the next dashed, dash-dotted, dotted.
+    amp_th : float
+        The amplitude threshold the bands used, a fraction of the peak magnitude (dimensionless), for
+        the bound of :func:`threshold_bound` (dotted).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Left, SPARC (dimensionless) against n; right, the band's last frequency (Hz). Filled markers where
+        the threshold ended the band, open markers where fc did.
+    """
+    from .experiment import threshold_bound  # the bound the cohort's figure draws too
+
+    n = np.asarray(n)
+    ratios = list(dict.fromkeys(r for r, _ in bands))
+    fcs = sorted({fc for _, fc in bands}, reverse=True)
+    styles = ["-", "--", "-.", ":"]
+    fig, (ax, ax_end) = plt.subplots(1, 2, figsize=(10, 3.6), layout="constrained")
+    for (r, fc), b in bands.items():
+        color, ls = f"C{ratios.index(r) % 10}", styles[fcs.index(fc) % len(styles)]
+        for a, y in ((ax, np.asarray(b.sparc)), (ax_end, np.asarray(b.band_end_hz))):
+            capped = np.asarray(b.capped, dtype=bool)
+            a.plot(n, y, ls, color=color, lw=1, label=f"cut at {r:.0%}, fc = {fc:g} Hz")
+            a.scatter(n[~capped], y[~capped], s=9, color=color)
+            a.scatter(n[capped], y[capped], s=12, facecolor="white", edgecolor=color, zorder=3)
+    ax.axhline(threshold_bound(amp_th), color="0.3", ls=":", lw=1)
+    ax.set_xlabel("segment length n (samples at 60 Hz)")
+    ax.set_ylabel("SPARC")
+    ax_end.set_xlabel("segment length n (samples at 60 Hz)")
+    ax_end.set_ylabel("band end (Hz)")
+    ax_end.legend(fontsize=7, frameon=False, ncol=2)
     return fig

@@ -10,9 +10,11 @@ import lazy_loader as _lazy
 __getattr__, __dir__, __all__ = _lazy.attach(
     __name__,
     submod_attrs={
+        "_analysis": ["Analysis", "analyse"],
         "_cli": ["main"],
         "_output": ["output_folder", "OutputError", "RUN_FILES"],
-        "_run": ["DEFAULT_DATA", "load_input", "OptionError", "run"],
+        "_run": ["DEFAULT_DATA", "OptionError", "run"],
         "_summary": ["summary_lines"],
+        "_trials_file": ["read_trials", "TRIALS_IN_JSON_MAX"],
     },
 )

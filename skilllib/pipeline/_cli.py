@@ -87,7 +87,7 @@ def _parser() -> argparse.ArgumentParser:
         required=True,
         help="folder for results.json and the figures (replaced as a whole when the run ends)",
     )
-    g = r.add_argument_group("reading other formats (chapter 7)")
+    g = r.add_argument_group("reading other formats (chapter 9)")
     g.add_argument(
         "--columns",
         type=_columns,
@@ -191,9 +191,9 @@ def _parser() -> argparse.ArgumentParser:
         nargs="+",
         metavar="SETTING",
         help="compare the run with other SPARC settings, each like fc=10 or fc=10,amp_th=0.1 "
-        "(results.json sparc_sensitivity; chapter 4)",
+        "(results.json sparc_sensitivity; chapter 6)",
     )
-    g = r.add_argument_group("large corpora on a Dask cluster (README: At scale)")
+    g = r.add_argument_group("large corpora on a Dask cluster (docs/cli.md: Large corpora)")
     g.add_argument(
         "--workers",
         type=int,
@@ -276,6 +276,27 @@ def _run(args: argparse.Namespace) -> int:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    """The command line ``python -m skilllib run ...`` (the ``skilllib`` command): parse, run, print a summary.
+
+    The exit statuses are those of the module docstring; a user's error (a file that cannot be read, a bad
+    option, an output folder that cannot be used) is one line on stderr, never a traceback.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        The arguments after the program's name (text); None for ``sys.argv[1:]``.
+
+    Returns
+    -------
+    int
+        The exit status: 0 success, 1 unexpected error, 2 the user's error, 3 too few selected trials for
+        prototypes, 130 interrupted, 141 standard output closed early (dimensionless).
+
+    Raises
+    ------
+    SystemExit
+        From argparse, for ``--help``, ``--version`` (status 0) or arguments it cannot parse (status 2).
+    """
     try:
         args = _parser().parse_args(argv)
         code = _run(args)

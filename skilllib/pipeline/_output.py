@@ -46,7 +46,23 @@ def output_folder(out: str | Path) -> Iterator[Path]:
     """Yield a fresh, empty folder to write a run's output into; on normal exit it replaces ``out``
     (module docstring). Raises :class:`OutputError` when ``out`` is a file, holds files no run wrote, or
     another run holds its lock; on an exception inside the block the fresh folder is removed and ``out``
-    is left as it was."""
+    is left as it was.
+
+    Parameters
+    ----------
+    out : str or pathlib.Path
+        The output folder (``--out``) the run's output replaces as a whole (text).
+
+    Yields
+    ------
+    pathlib.Path
+        The fresh, empty folder ``.<name>.partial-<pid>`` beside ``out`` to write into.
+
+    Raises
+    ------
+    OutputError
+        When ``out`` is a file, holds files no run wrote, or another run holds its lock.
+    """
     out = Path(out).absolute()
     if out.exists() and not out.is_dir():
         raise OutputError(f"{out}: exists and is not a folder (--out names the folder for the results)")

@@ -6,7 +6,7 @@ Steps (each a skilllib function the chapters also call): read and validate the r
 tuples (:mod:`skilllib.prototypes`); joint velocities of every prototype on a robot arm
 (:mod:`skilllib.robot`), its accelerations, torques, limits, time scaling and executed motion
 (:mod:`skilllib.robot`). :func:`run` returns the results dictionary that is
-written to ``results.json`` (schema in README) and writes the figures beside it.
+written to ``results.json`` (schema in docs/results.md) and writes the figures beside it.
 """
 
 from __future__ import annotations
@@ -25,23 +25,20 @@ from .. import __version__
 from .. import prototypes as pt
 from ..datasets import cohort_path
 from ..features import CONTACT_WINDOW, ONSET_SPEED, Lowpass, parse_lowpass, run_lowpass, segment, select, trial_features
-from ..prototypes import SparcSensitivity, sparc_sensitivity
-from ..recordings import Recordings, is_parquet, read_recordings, recordings_from_frame
+from ..prototypes import SparcSensitivity, json_value, sparc_sensitivity
+from ..recordings import Recordings, load_recordings
 from ..robot import (
+    Arm,
     Assessment,
-    RobotSetup,
     TransferResult,
     assess,
     get_robot,
-    qd_limits_vector,
-    resolve_limits,
     transfer,
     transfer_block,
 )
 from ..smoothness import DEFAULT_AMP_TH, DEFAULT_FC, DEFAULT_PADLEVEL
 from ._output import output_folder, write_json_atomic
 from ._trials_file import in_json, trials_block, write_trials
-from ._trials_file import plain as _plain
 
 #: The book's synthetic cohort (default input), shipped with skilllib (:mod:`skilllib.datasets`).
 DEFAULT_DATA = cohort_path()
@@ -49,7 +46,7 @@ DEFAULT_DATA = cohort_path()
 #: Fewest selected trials the clustering step accepts (K-means with k = 2 and a silhouette need 3).
 MIN_SELECTED = 3
 
-#: The version of results.json's layout (README "results.json"): 2 since ``feasible`` and ``time_scale``
+#: The version of results.json's layout (docs/results.md): 2 since ``feasible`` and ``time_scale``
 #: cover every limit checked (in 1 they were the velocity limits', beside ``feasible_all_limits`` and
 #: ``time_scale_all_limits``).
 SCHEMA_VERSION = 2
@@ -138,10 +135,40 @@ MAX_SEED = 2**32 - 1
 
 
 def check_options(
-    k: int, robot: str, qd_max: Sequence[float] | float | None, scaling: str, random_state: int = 0
-) -> tuple[RobotSetup, np.ndarray]:
-    """The robot setup and the joint velocity limits (rad/s) for the options; :class:`OptionError` for a
-    bad one. Called before the data are read, so a wrong option fails at once."""
+    k: int,
+    robot: str,
+    qd_max: Sequence[float] | float | None,
+    scaling: str,
+    random_state: int = 0,
+    qdd_max: Sequence[float] | float | None = None,
+    tau_max: Sequence[float] | float | None = None,
+) -> Arm:
+    """Check the options before the data are read, so that a wrong one fails at once.
+
+    Parameters
+    ----------
+    k : int
+        Number of clusters, at least 2.
+    robot : str
+        A name of :func:`skilllib.robot.get_robot`.
+    qd_max, qdd_max, tau_max : float or sequence of float or None
+        The user's joint velocity (rad/s), acceleration (rad/s^2) and torque (N m) limits, or None for the
+        arm's.
+    scaling : str
+        ``"raw"`` or ``"standard"``.
+    random_state : int
+        K-means' seed, 0 to :data:`MAX_SEED`.
+
+    Returns
+    -------
+    Arm
+        The arm with every limit the run checks.
+
+    Raises
+    ------
+    OptionError
+        For a bad option, with the option named.
+    """
     if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or k < 2:
         raise OptionError(f"k must be an integer of at least 2, got {k!r}")
     if (
@@ -153,25 +180,13 @@ def check_options(
     if scaling not in ("raw", "standard"):
         raise OptionError(f"scaling must be 'raw' or 'standard', got {scaling!r}")
     try:
-        setup = get_robot(robot)
+        arm = get_robot(robot)
     except ValueError as e:
         raise OptionError(str(e)) from None
     try:
-        limits = qd_limits_vector(setup.qd_limits if qd_max is None else qd_max, setup.robot.n)
+        return arm.with_limits(qd_max, qdd_max, tau_max)
     except ValueError as e:
-        raise OptionError(f"qd_max for {setup.robot.name} ({setup.robot.n} joints): {e}") from None
-    return setup, limits
-
-
-def check_dynamic_options(
-    robot: str, setup: RobotSetup, qdd_max: Sequence[float] | float | None, tau_max: Sequence[float] | float | None
-):
-    """The acceleration and torque limits for the options (:func:`skilllib.robot.resolve_limits`);
-    :class:`OptionError` for a bad one."""
-    try:
-        return resolve_limits(robot, setup.robot, qdd_max, tau_max)
-    except ValueError as e:
-        raise OptionError(f"{e} ({setup.robot.name}, {setup.robot.n} joints)") from None
+        raise OptionError(f"{e} ({arm.robot.name}, {arm.n} joints)") from None
 
 
 def _check_nyquist(params: dict[str, float], fs: float) -> None:
@@ -181,27 +196,6 @@ def _check_nyquist(params: dict[str, float], fs: float) -> None:
             f"fc = {params['fc']:g} Hz lies above the Nyquist frequency {fs / 2:g} Hz of these "
             f"recordings (sampled at {fs:g} Hz); choose fc <= {fs / 2:g} Hz"
         )
-
-
-def load_input(data: str | Path | pd.DataFrame | Recordings | None = None, **read_options: Any) -> Recordings:
-    """The recordings of ``data``: the shipped cohort (None), :class:`Recordings` as they are, a DataFrame
-    (validated), or a path: a CSV (compressed or not), a C3D or TRC file, or a folder of them
-    (:func:`skilllib.recordings.load_recordings`, which ``read_options`` go to: ``columns``, ``units``,
-    ``up_axis``, ``marker``, ``contact_channel``, ``contact_threshold``, ``contact_height``, ``name_pattern``)."""
-    options = {k: v for k, v in read_options.items() if v is not None}
-    if not options:
-        if data is None:
-            return read_recordings(DEFAULT_DATA)
-        if isinstance(data, Recordings):
-            return data
-        if isinstance(data, pd.DataFrame):
-            return recordings_from_frame(data)
-        path = Path(data)
-        if is_parquet(path) or not path.is_dir() and path.suffix.lower() not in (".c3d", ".trc"):
-            return read_recordings(path)
-    from .. import recordings as formats
-
-    return formats.load_recordings(DEFAULT_DATA if data is None else data, **options)
 
 
 def run(
@@ -230,7 +224,8 @@ def run(
 
     ``data``: a path (CSV, compressed CSV, C3D, TRC, or a folder of them), a pandas DataFrame in the
     recordings format, or :class:`~skilllib.recordings.Recordings`; ``read_options``: how to read it
-    (:func:`load_input`); ``k``: clusters (the paper: 6), reduced with a message when the selected trials
+    (:func:`skilllib.recordings.load_recordings`; None: the book's synthetic cohort); ``k``: clusters (the
+    paper: 6), reduced with a message when the selected trials
     allow fewer; ``robot``: a name of :func:`skilllib.robot.get_robot`; ``qd_max``: joint velocity limits
     in rad/s (one for all joints or one per joint; default: the robot's); ``qdd_max`` (rad/s^2) and
     ``tau_max`` (N m): joint acceleration and torque limits, likewise (default: the robot's,
@@ -254,9 +249,69 @@ def run(
     ``messages``. ``out`` is written as a whole (:mod:`skilllib.pipeline`): a fresh folder replaces it only
     when everything is written, so old figures never sit beside new results and a failed run leaves it as
     it was.
+
+    Parameters
+    ----------
+    data : str, pathlib.Path, pandas.DataFrame, Recordings or None
+        The recordings (positions in m, times in s): a path, a long table or
+        :class:`~skilllib.recordings.Recordings`; None for the book's synthetic cohort.
+    out : str, pathlib.Path or None
+        The output folder for results.json and the figures (text); None to write nothing.
+    k : int
+        Number of clusters (dimensionless; the paper's 6).
+    robot : str
+        The arm, a name of :func:`skilllib.robot.get_robot` (text).
+    qd_max : float or sequence of float, optional
+        Joint velocity limits (rad/s), one for all joints or one per joint; the robot's by default.
+    qdd_max : float or sequence of float, optional
+        Joint acceleration limits (rad/s^2), likewise.
+    tau_max : float or sequence of float, optional
+        Joint torque limits (N m), likewise; only for arms with dynamic parameters.
+    scaling : str
+        ``"raw"`` (the paper: PV in m/s and SPARC as they are) or ``"standard"`` (text).
+    random_state : int
+        K-means' seed, 0 .. 2**32 - 1 (dimensionless).
+    fc : float
+        SPARC's maximum cut-off frequency, at most the recordings' Nyquist frequency (Hz).
+    amp_th : float
+        SPARC's amplitude threshold, a fraction of the peak magnitude (dimensionless).
+    padlevel : int
+        SPARC's zero-padding level (dimensionless).
+    sensitivity : sequence of mapping of str to float, optional
+        Other SPARC settings to compare with: some of ``fc`` (Hz), ``amp_th`` and ``padlevel``
+        (dimensionless), the rest as this run's.
+    lowpass : str, float, Lowpass or None
+        The positions' low-pass filter: ``"auto"``, ``"none"`` or a cut-off in Hz.
+    read_options : mapping of str to Any, optional
+        How to read ``data`` (:func:`skilllib.recordings.load_recordings`: columns, units, up axis,
+        marker, contact channel, threshold and height in m, name pattern).
+    progress : callable
+        ``progress(items, description)`` wrapping the long loops, e.g. tqdm; by default none.
+    write_figures : bool
+        Whether to write the figures (PNG, SVG) beside results.json (dimensionless).
+    workers : int, optional
+        Compute the features of a folder of Parquet files on a local Dask cluster of that many worker
+        processes (dimensionless).
+    scheduler : str, optional
+        The same on the running Dask scheduler at that address (text).
+
+    Returns
+    -------
+    PipelineRun
+        ``results`` (the results.json dictionary) and the objects behind it: recordings, feature table,
+        silhouette sweep, prototypes, transfers, executions' assessments and messages.
+
+    Raises
+    ------
+    OptionError
+        For a bad option, before the data are read (``fc`` against the Nyquist frequency once the sampling
+        rate is known).
+    skilllib.recordings.DataFormatError
+        For a file that cannot be read.
+    OutputError
+        For an output folder that cannot be used.
     """
-    setup, limits = check_options(k, robot, qd_max, scaling, random_state)
-    dyn_limits = check_dynamic_options(robot, setup, qdd_max, tau_max)
+    arm = check_options(k, robot, qd_max, scaling, random_state, qdd_max, tau_max)
     params = check_sparc_params(fc, amp_th, padlevel)
     variants = [check_sparc_params(**{**params, **dict(v)}) for v in _settings(sensitivity)]
     if not isinstance(lowpass, Lowpass):
@@ -286,7 +341,7 @@ def run(
             raise OptionError(str(e)) from None
         filt = features.attrs["lowpass"]
     else:
-        recordings = load_input(data, **dict(read_options or {}))
+        recordings = load_recordings(DEFAULT_DATA if data is None else data, **dict(read_options or {}))
     for p in (params, *variants):
         _check_nyquist(p, recordings.fs)
     try:
@@ -296,9 +351,7 @@ def run(
     result = compute(
         recordings,
         data,
-        setup=setup,
-        limits=limits,
-        dyn_limits=dyn_limits,
+        arm=arm,
         k=k,
         scaling=scaling,
         random_state=random_state,
@@ -314,7 +367,7 @@ def run(
                 write_trials(result.features, folder)
             write_json_atomic(result.results, folder / "results.json")
             if write_figures:
-                result.results["figures"] = _write_figures(result, folder, setup.robot)
+                result.results["figures"] = _write_figures(result, folder, arm.robot)
                 write_json_atomic(result.results, folder / "results.json")
     return result
 
@@ -323,9 +376,7 @@ def compute(
     recordings: Recordings,
     data: Any,
     *,
-    setup: RobotSetup,
-    limits: np.ndarray,
-    dyn_limits: Any,
+    arm: Arm,
     k: int,
     scaling: str,
     random_state: int,
@@ -348,7 +399,7 @@ def compute(
             "synthetic": _is_shipped_cohort(data),
             "n_trials": len(features),
             "n_participants": int(features["participant"].nunique()),
-            "fs": _plain(float(recordings.fs)),
+            "fs": json_value(float(recordings.fs)),
             "n_resampled": int(features["resampled"].sum()),
         },
         "sparc_params": {"fc": params["fc"], "amp_th": params["amp_th"], "padlevel": int(params["padlevel"])},
@@ -378,7 +429,7 @@ def compute(
         result.messages.append(
             f"{no_rest} of {len(features)} trials are invalid with 'no rest before onset': either the recordings "
             f"start after the movement began, or the position noise is so large that its derivative exceeds the "
-            f"{ONSET_SPEED:g} m/s onset speed; then try {hint} (chapter 7)"
+            f"{ONSET_SPEED:g} m/s onset speed; then try {hint} (chapter 10)"
         )
     if lowpass.cutoff_hz is not None:
         result.messages.append(filter_message(selected, lowpass))
@@ -431,11 +482,9 @@ def compute(
                 if isinstance(recordings, Recordings)
                 else recordings.segment(p, tr, lowpass=lowpass)
             )
-            result.profiles.append((seg.t - seg.t[0], seg.speed))
-            result.transfers.append(
-                transfer(setup.robot, seg.t - seg.t[0], seg.pos, seg.vel, q0=setup.q0, qd_limits=limits, cluster=c)
-            )
-        result.assessments = assess(setup.robot, result.transfers, dyn_limits, sparc_params=params)
+            result.profiles.append((seg.time, seg.speed))
+            result.transfers.append(transfer(arm, seg, cluster=c))
+        result.assessments = assess(arm.robot, result.transfers, arm.dynamic_limits, sparc_params=params)
         results["transfer"] = transfer_block(result.assessments)
     if variants and sweep is not None:
         result.sensitivity = sparc_sensitivity(
@@ -472,7 +521,7 @@ def capped_message(selected: pd.DataFrame, params: Mapping[str, float]) -> str:
     return (
         f"{n} of {len(selected)} selected trials have their SPARC band ended by fc = {params['fc']:g} Hz rather "
         f"than by the amplitude threshold {params['amp_th']:g} (sparc_capped): their SPARC depends on fc "
-        f"(compare settings with --sensitivity, chapter 4)"
+        f"(compare settings with --sensitivity, chapter 6)"
     )
 
 
@@ -482,7 +531,7 @@ def filter_message(selected: pd.DataFrame, lowpass: Lowpass) -> str:
     return (
         f"positions were low-pass filtered at {lowpass.cutoff_hz:.3g} Hz ({lowpass.chosen_by}; zero-lag "
         f"Butterworth, filter in results.json); SPARC's band reaches above that cut-off in {beyond} of "
-        f"{len(selected)} selected trials, whose SPARC is partly the filter's (chapter 7)"
+        f"{len(selected)} selected trials, whose SPARC is partly the filter's (chapter 10)"
     )
 
 

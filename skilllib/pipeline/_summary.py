@@ -20,7 +20,19 @@ if TYPE_CHECKING:
 
 
 def summary_lines(run_: PipelineRun) -> list[str]:
-    """A short human summary of a run: counts, commonest reasons, k, prototypes, feasibility."""
+    """A short human summary of a run: counts, commonest reasons, k, prototypes, feasibility.
+
+    Parameters
+    ----------
+    run\\_ : PipelineRun
+        The finished run, as :func:`skilllib.pipeline.run` returns it.
+
+    Returns
+    -------
+    list of str
+        The lines, without newlines (text): PV in m/s, peak joint velocities in rad/s, the limits with
+        their units, the sampling rate in Hz.
+    """
     f = run_.features
     counts = f["status"].value_counts()
     fs = run_.recordings.fs

@@ -13,41 +13,19 @@ trials) and take seconds to write and to read, so the run writes the whole featu
 from __future__ import annotations
 
 import json
-import math
 from pathlib import Path
 from typing import Any
 
-import numpy as np
 import pandas as pd
+
+from ..features import FEATURE_COLUMNS
+from ..prototypes import json_value
 
 TRIALS_IN_JSON_MAX = 10_000  #: more trials than this: the table goes to trials.parquet
 TRIALS_FILE = "trials.parquet"
-#: The keys of each entry of results.json's trials list.
-TRIAL_KEYS = (
-    "participant",
-    "trial",
-    "status",
-    "reason",
-    "pv",
-    "contact_speed",
-    "duration",
-    "sparc",
-    "sparc_band_end_hz",
-    "sparc_capped",
-    "ldlj",
-    "resampled",
-)
-
-
-def plain(v: Any) -> Any:
-    """A JSON-ready scalar: numpy types unwrapped, NaN/inf and pandas NA as None."""
-    if v is None or v is pd.NA:
-        return None
-    if isinstance(v, np.generic):
-        v = v.item()
-    if isinstance(v, float) and not math.isfinite(v):
-        return None
-    return v
+#: The keys of each entry of results.json's trials list: the feature table's columns but the segment's
+#: bookkeeping (``n``, ``t_onset``, ``t_contact``), in its order.
+TRIAL_KEYS = tuple(c for c in FEATURE_COLUMNS if c not in ("n", "t_onset", "t_contact"))
 
 
 def trials_section(features: pd.DataFrame) -> list[dict[str, Any]]:
@@ -55,7 +33,7 @@ def trials_section(features: pd.DataFrame) -> list[dict[str, Any]]:
     cols = list(TRIAL_KEYS)
     out = []
     for rec in features[cols].to_dict(orient="records"):
-        entry = {c: plain(rec[c]) for c in cols}
+        entry = {c: json_value(rec[c]) for c in cols}
         if entry["status"] == "selected":
             entry["reason"] = None
         out.append(entry)
@@ -91,7 +69,24 @@ def write_trials(features: pd.DataFrame, folder: Path) -> Path:
 
 
 def read_trials(folder: str | Path) -> pd.DataFrame:
-    """The per-trial table of a run's output folder, from results.json's list or from trials.parquet."""
+    """The per-trial table of a run's output folder, from results.json's list or from trials.parquet.
+
+    Parameters
+    ----------
+    folder : str or pathlib.Path
+        The run's output folder, holding results.json (text).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per input trial: ids, status, reason and features (PV in m/s, SPARC dimensionless, ...;
+        :data:`skilllib.features.FEATURE_COLUMNS`).
+
+    Raises
+    ------
+    FileNotFoundError
+        When the folder holds no results.json, or not the trials.parquet it names.
+    """
     folder = Path(folder)
     results = json.loads((folder / "results.json").read_text())
     if "trials_file" in results:

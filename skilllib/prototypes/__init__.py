@@ -12,6 +12,7 @@ __getattr__, __dir__, __all__ = _lazy.attach(
     __name__,
     submod_attrs={
         "_settings": ["DEFAULT_K"],
+        "_json": ["json_value"],
         "_kmeans": [
             "bootstrap_stability",
             "feature_frame",

@@ -31,21 +31,39 @@ from sklearn.cluster import AgglomerativeClustering, KMeans
 from sklearn.metrics import adjusted_rand_score
 from sklearn.mixture import GaussianMixture
 
+from ..recordings import ID_COLUMNS
+from ..smoothness import single_threaded
 from . import _silhouette as _sil
+from ._json import json_value
 from ._settings import DEFAULT_K
-from ._silhouette import SilhouetteEstimate, _single_threaded
+from ._silhouette import SilhouetteEstimate
 
 Scaling = Literal["raw", "standard"]
 Method = Literal["kmeans", "gmm", "agglomerative"]
-ID_COLUMNS = ("participant", "trial")
 FEATURES = ("pv", "sparc")
 K_RANGE = (2, 16)  #: the paper's silhouette sweep
 
 
 def feature_frame(pv: Any, sparc: Any, participant: Any = None, trial: Any = None) -> pd.DataFrame:
-    """A DataFrame in the module's input format from arrays: PV (m/s), SPARC and trial ids.
+    """A DataFrame in the module's input format from arrays: PV, SPARC and trial ids.
 
     Missing ``participant`` defaults to 0 for every row and missing ``trial`` to 0..n-1.
+
+    Parameters
+    ----------
+    pv : array_like
+        The peak speeds (m/s).
+    sparc : array_like
+        The SPARC values (dimensionless).
+    participant : array_like or None
+        The participant ids (text); None: 0 for every row.
+    trial : array_like or None
+        The trial ids (text); None: 0..n-1.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``participant``, ``trial``, ``pv`` (m/s), ``sparc`` (dimensionless).
     """
     pv_a, sp_a = np.asarray(pv, dtype=float).ravel(), np.asarray(sparc, dtype=float).ravel()
     if pv_a.shape != sp_a.shape:
@@ -168,23 +186,44 @@ def _fit_arrays(x: np.ndarray, k: int, method: str, scaling: str, random_state: 
 class PrototypeResult:
     """Clusters of the (PV, SPARC) tuples and their prototypes, clusters ordered by centre PV.
 
-    Attributes:
+    Prototypes: K-means and agglomerative: the member nearest the centre (Euclidean, in the clustering
+    space); GMM: the member with the smallest Mahalanobis distance to its component mean (highest component
+    density). Silhouette: average silhouette (Rousseeuw 1987; ``sklearn.metrics.silhouette_score``),
+    Euclidean, in the clustering space: exact up to ``SILHOUETTE_EXACT_MAX`` trials, above it an estimate
+    from subsamples (:mod:`skilllib.prototypes`).
 
-    :k, method, scaling, random_state, n_init: how the fit was made.
-    :data: the input's participant, trial, pv (m/s), sparc and the ``cluster`` label, in input row order
-        (positional index 0..n-1).
-    :centres: per cluster (index 0..k-1) ``pv`` (m/s) and ``sparc`` in ORIGINAL units, whatever the scaling.
-    :prototypes: per cluster the prototype trial: ``participant``, ``trial``, ``pv``, ``sparc`` and
-        ``row`` (its position in ``data``). K-means and agglomerative: the member nearest the centre
-        (Euclidean, in the clustering space); GMM: the member with the smallest Mahalanobis distance
-        to its component mean (highest component density).
-    :sizes: trials per cluster.
-    :silhouette: average silhouette (Rousseeuw 1987; ``sklearn.metrics.silhouette_score``), Euclidean,
-        in the clustering space: exact up to ``SILHOUETTE_EXACT_MAX`` trials, above it an estimate from
-        subsamples (:mod:`skilllib.prototypes`).
-    :silhouette_samples: per-trial silhouettes of the trials ``silhouette_rows`` (exact: all, input order).
-    :silhouette_method, silhouette_estimate: ``"exact"`` and None, or ``"subsample"`` and its
-        :class:`~skilllib.prototypes.SilhouetteEstimate` (n, sample size, repeats, averages, spread, rows).
+    Attributes
+    ----------
+    k : int
+        The number of clusters (dimensionless).
+    method : str
+        The clustering method (text).
+    scaling : str
+        The clustering space, ``"raw"`` or ``"standard"`` (text).
+    random_state : int
+        The seed of the fit (dimensionless).
+    n_init : int
+        The restarts (dimensionless).
+    data : pandas.DataFrame
+        The input's participant, trial, pv (m/s), sparc (dimensionless) and the ``cluster`` label, in input
+        row order (positional index 0..n-1).
+    centres : pandas.DataFrame
+        Per cluster (index 0..k-1) ``pv`` (m/s) and ``sparc`` (dimensionless) in ORIGINAL units, whatever
+        the scaling.
+    prototypes : pandas.DataFrame
+        Per cluster the prototype trial: ``participant``, ``trial``, ``pv`` (m/s), ``sparc``
+        (dimensionless) and ``row`` (its position in ``data``).
+    sizes : numpy.ndarray of int
+        Trials per cluster (dimensionless).
+    silhouette : float
+        The average silhouette (dimensionless).
+    silhouette_samples : numpy.ndarray
+        Per-trial silhouettes of the trials ``silhouette_rows`` (exact: all, input order; dimensionless).
+    silhouette_method : str
+        ``"exact"`` or ``"subsample"`` (text).
+    silhouette_estimate : SilhouetteEstimate or None
+        None when exact; else the :class:`~skilllib.prototypes.SilhouetteEstimate` (n, sample size,
+        repeats, averages, spread, rows).
     """
 
     k: int
@@ -239,8 +278,8 @@ class PrototypeResult:
                     "size": int(self.sizes[c]),
                     "centre": {"pv": float(self.centres.at[c, "pv"]), "sparc": float(self.centres.at[c, "sparc"])},
                     "prototype": {
-                        "participant": _plain(p["participant"]),
-                        "trial": _plain(p["trial"]),
+                        "participant": json_value(p["participant"]),
+                        "trial": json_value(p["trial"]),
                         "pv": float(p["pv"]),
                         "sparc": float(p["sparc"]),
                     },
@@ -255,11 +294,7 @@ class PrototypeResult:
         }
 
 
-def _plain(v: Any) -> Any:
-    return v.item() if isinstance(v, np.generic) else v
-
-
-@_single_threaded
+@single_threaded()
 def fit_prototypes(
     data: pd.DataFrame,
     k: int = DEFAULT_K,
@@ -280,8 +315,32 @@ def fit_prototypes(
     Silhouettes: exact up to ``SILHOUETTE_EXACT_MAX`` trials, above a subsample estimate seeded by
     ``random_state`` (:func:`skilllib.prototypes.silhouette`; see ``silhouette_method``).
 
-    Raises ValueError on missing columns, NaN/inf features, duplicate ids, k < 2, fewer than k + 1 trials,
-    fewer than k distinct points, or a GMM component left empty.
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        The trials: ``participant``, ``trial`` (ids), ``pv`` (m/s) and ``sparc`` (dimensionless), as
+        :func:`feature_frame` makes them.
+    k : int
+        The number of clusters (dimensionless), >= 2.
+    method : {"kmeans", "gmm", "agglomerative"}
+        The clustering method (text), as :func:`fit_prototypes`.
+    scaling : {"raw", "standard"}
+        The clustering space (text): PV (m/s) and SPARC as they are, or z-scores.
+    random_state : int
+        The seed of the fit (dimensionless).
+    n_init : int
+        Restarts of K-means and GMM, the best kept (dimensionless).
+
+    Returns
+    -------
+    PrototypeResult
+        The clusters, their centres (PV in m/s, SPARC dimensionless), prototypes and silhouettes.
+
+    Raises
+    ------
+    ValueError
+        On missing columns, NaN/inf features, duplicate ids, k < 2, fewer than k + 1 trials, fewer than k
+        distinct points, or a GMM component left empty.
     """
     df = _validate(data)
     x = df[list(FEATURES)].to_numpy()
@@ -317,8 +376,18 @@ def fit_prototypes(
 
 @dataclass(frozen=True, eq=False)
 class SilhouetteSweep:
-    """Average and per-trial silhouettes for each k; ``results[k]`` equals ``fit_prototypes(data, k, ...)``
-    with the same options. ``requested`` is the asked-for (k_min, k_max), which may exceed ``ks``."""
+    """Average and per-trial silhouettes for each k.
+
+    ``results[k]`` equals ``fit_prototypes(data, k, ...)`` with the same options. ``requested`` is the
+    asked-for (k_min, k_max), which may exceed ``ks``.
+
+    Attributes
+    ----------
+    results : dict of int to PrototypeResult
+        The fit for each number of clusters k (dimensionless).
+    requested : tuple of int
+        The asked-for (k_min, k_max) (dimensionless).
+    """
 
     results: dict[int, PrototypeResult]
     requested: tuple[int, int]
@@ -374,9 +443,37 @@ def silhouette_sweep(
     """Fit k = k_min..k_max clusters and compute silhouettes (Rousseeuw 1987) as the paper does (2..16).
 
     The silhouette needs k <= n - 1, and k clusters need k distinct points: when the data allow fewer
-    clusters than ``k_max`` the range is shrunk to min(n - 1, distinct points) with a ``UserWarning``;
-    ValueError when not even ``k_min`` is possible (or ``k_min`` < 2, or ``k_max`` < ``k_min``).
-    ``progress(ks, "silhouette")`` may wrap the loop over k (e.g. a tqdm progress bar).
+    clusters than ``k_max`` the range is shrunk to min(n - 1, distinct points) with a ``UserWarning``.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        The trials: ``participant``, ``trial`` (ids), ``pv`` (m/s) and ``sparc`` (dimensionless), as
+        :func:`feature_frame` makes them.
+    k_min : int
+        The fewest clusters (dimensionless), >= 2.
+    k_max : int
+        The most clusters (dimensionless), >= ``k_min``.
+    method : {"kmeans", "gmm", "agglomerative"}
+        The clustering method (text), as :func:`fit_prototypes`.
+    scaling : {"raw", "standard"}
+        The clustering space (text): PV (m/s) and SPARC as they are, or z-scores.
+    random_state : int
+        The seed of the fit (dimensionless).
+    n_init : int
+        Restarts of K-means and GMM, the best kept (dimensionless).
+    progress : callable or None
+        ``progress(ks, "silhouette")`` may wrap the loop over k (e.g. a tqdm progress bar).
+
+    Returns
+    -------
+    SilhouetteSweep
+        The fit and silhouettes (dimensionless) for each k.
+
+    Raises
+    ------
+    ValueError
+        When not even ``k_min`` is possible, or ``k_min`` < 2, or ``k_max`` < ``k_min``.
     """
     df = _validate(data)
     if k_min < 2 or k_max < k_min:
@@ -414,10 +511,34 @@ def seed_stability(
     random_state: int = 0,
     n_init: int = 10,
 ) -> np.ndarray:
-    """Adjusted Rand index (Hubert & Arabie 1985; ``sklearn.metrics.adjusted_rand_score``) of the labels
-    fitted with each of ``seeds`` against the reference fit with ``random_state``; one value per seed.
-    1 means the same partition; about 0 is chance agreement. Use ``n_init=1`` to see single-start
-    variability of K-means.
+    """Adjusted Rand index of the labels fitted with each of ``seeds`` against the reference fit.
+
+    Adjusted Rand index (Hubert & Arabie 1985; ``sklearn.metrics.adjusted_rand_score``) against the fit
+    with ``random_state``; one value per seed. 1 means the same partition; about 0 is chance agreement.
+    Use ``n_init=1`` to see single-start variability of K-means.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        The trials: ``participant``, ``trial`` (ids), ``pv`` (m/s) and ``sparc`` (dimensionless), as
+        :func:`feature_frame` makes them.
+    k : int
+        The number of clusters (dimensionless), >= 2.
+    seeds : iterable of int
+        The seeds to refit with (dimensionless).
+    method : {"kmeans", "gmm", "agglomerative"}
+        The clustering method (text), as :func:`fit_prototypes`.
+    scaling : {"raw", "standard"}
+        The clustering space (text): PV (m/s) and SPARC as they are, or z-scores.
+    random_state : int
+        The seed of the fit (dimensionless).
+    n_init : int
+        Restarts of K-means and GMM, the best kept (dimensionless).
+
+    Returns
+    -------
+    numpy.ndarray
+        The adjusted Rand index of each seed (dimensionless).
     """
     ref = fit_prototypes(data, k, method=method, scaling=scaling, random_state=random_state, n_init=n_init)
     return np.array(
@@ -431,7 +552,7 @@ def seed_stability(
     )
 
 
-@_single_threaded
+@single_threaded()
 def bootstrap_stability(
     data: pd.DataFrame,
     k: int = DEFAULT_K,
@@ -448,6 +569,29 @@ def bootstrap_stability(
     whole procedure on it (scaling included), assigns every original trial to the nearest refitted
     centre (in the resample's clustering space; for ``"gmm"`` this approximates its own assignment) and
     compares with the full-data fit's labels.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        The trials: ``participant``, ``trial`` (ids), ``pv`` (m/s) and ``sparc`` (dimensionless), as
+        :func:`feature_frame` makes them.
+    k : int
+        The number of clusters (dimensionless), >= 2.
+    n_boot : int
+        The number of resamples (dimensionless).
+    method : {"kmeans", "gmm", "agglomerative"}
+        The clustering method (text), as :func:`fit_prototypes`.
+    scaling : {"raw", "standard"}
+        The clustering space (text): PV (m/s) and SPARC as they are, or z-scores.
+    random_state : int
+        The seed of the fit (dimensionless).
+    n_init : int
+        Restarts of K-means and GMM, the best kept (dimensionless).
+
+    Returns
+    -------
+    numpy.ndarray, shape (n_boot,)
+        The adjusted Rand index of each resample (dimensionless, 1 = the same partition).
     """
     ref = fit_prototypes(data, k, method=method, scaling=scaling, random_state=random_state, n_init=n_init)
     x = ref.data[list(FEATURES)].to_numpy()
@@ -463,5 +607,18 @@ def bootstrap_stability(
 
 
 def results_section(sweep: SilhouetteSweep, result: PrototypeResult) -> dict[str, Any]:
-    """The clustering part of results.json: ``{"silhouette": {"2": ..}, "k": .., "clusters": [..], ..}``."""
+    """The clustering part of results.json: ``{"silhouette": {"2": ..}, "k": .., "clusters": [..], ..}``.
+
+    Parameters
+    ----------
+    sweep : SilhouetteSweep
+        The silhouette sweep.
+    result : PrototypeResult
+        The chosen fit.
+
+    Returns
+    -------
+    dict of str to Any
+        The section as JSON values (PV in m/s, SPARC and silhouettes dimensionless).
+    """
     return {"silhouette": sweep.to_dict(), **result.to_dict()}

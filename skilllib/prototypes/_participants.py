@@ -42,7 +42,20 @@ def _pair(labels: Any, participants: Any) -> tuple[np.ndarray, np.ndarray]:
 
 
 def cluster_participant_table(labels: Any, participants: Any) -> pd.DataFrame:
-    """Trials per cluster (rows) and participant (columns), with row and column totals (``all``)."""
+    """Trials per cluster (rows) and participant (columns), with row and column totals (``all``).
+
+    Parameters
+    ----------
+    labels : array_like
+        The cluster label of each trial (dimensionless).
+    participants : array_like
+        The participant id of each trial, aligned with ``labels`` (text).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The counts of trials (dimensionless).
+    """
     lab, par = _pair(labels, participants)
     t = pd.crosstab(
         pd.Series(lab, name="cluster"), pd.Series(par, name="participant"), margins=True, margins_name="all"
@@ -71,8 +84,26 @@ class ParticipantDependence:
 def participant_dependence(
     labels: Any, participants: Any, *, n_permutations: int = N_PERMUTATIONS, seed: int = 0
 ) -> ParticipantDependence:
-    """NMI between the clusters and the participants with a permutation baseline
-    (``numpy.random.default_rng(seed)``); see :class:`ParticipantDependence`."""
+    """NMI between the clusters and the participants with a permutation baseline.
+
+    The permutations use ``numpy.random.default_rng(seed)``; see :class:`ParticipantDependence`.
+
+    Parameters
+    ----------
+    labels : array_like
+        The cluster label of each trial (dimensionless).
+    participants : array_like
+        The participant id of each trial, aligned with ``labels`` (text).
+    n_permutations : int
+        The number of permutations of the baseline (dimensionless).
+    seed : int
+        The seed of the permutations (dimensionless).
+
+    Returns
+    -------
+    ParticipantDependence
+        The normalised mutual information and its permutation baseline (dimensionless).
+    """
     lab, par = _pair(labels, participants)
     if n_permutations < 1:
         raise ValueError(f"n_permutations must be at least 1, got {n_permutations}")
@@ -89,8 +120,23 @@ def participant_dependence(
 
 
 def cluster_composition(labels: Any, participants: Any) -> pd.DataFrame:
-    """Per cluster: ``trials``, ``participants`` (how many contribute), ``largest`` (the participant with most
-    trials in it) and ``largest share`` (that participant's share of the cluster)."""
+    """Per cluster: its trials, how many participants contribute, and the largest contributor.
+
+    Columns ``trials``, ``participants`` (how many contribute), ``largest`` (the participant with most
+    trials in it) and ``largest share`` (that participant's share of the cluster).
+
+    Parameters
+    ----------
+    labels : array_like
+        The cluster label of each trial (dimensionless).
+    participants : array_like
+        The participant id of each trial, aligned with ``labels`` (text).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per cluster: counts (dimensionless), the participant (text) and the share (dimensionless).
+    """
     t = cluster_participant_table(labels, participants).drop(index="all", columns="all")
     return pd.DataFrame(
         {
@@ -103,9 +149,24 @@ def cluster_composition(labels: Any, participants: Any) -> pd.DataFrame:
 
 
 def participant_spread(labels: Any, participants: Any) -> pd.DataFrame:
-    """Per participant: ``trials``, ``clusters`` (how many of their trials' clusters), ``main cluster``,
-    ``main share`` (share of their trials in it) and ``entropy`` (of their trials over the clusters,
-    divided by log k: 0 = all in one cluster, 1 = spread evenly over all k)."""
+    """Per participant: how their trials spread over the clusters.
+
+    Columns ``trials``, ``clusters`` (how many of their trials' clusters), ``main cluster``, ``main share``
+    (share of their trials in it) and ``entropy`` (of their trials over the clusters, divided by log k:
+    0 = all in one cluster, 1 = spread evenly over all k).
+
+    Parameters
+    ----------
+    labels : array_like
+        The cluster label of each trial (dimensionless).
+    participants : array_like
+        The participant id of each trial, aligned with ``labels`` (text).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per participant (counts, shares and entropy dimensionless).
+    """
     t = cluster_participant_table(labels, participants).drop(index="all", columns="all").T
     p = t.to_numpy(dtype=float) / t.sum(axis=1).to_numpy()[:, None]
     k = t.shape[1]
@@ -124,9 +185,24 @@ def participant_spread(labels: Any, participants: Any) -> pd.DataFrame:
 
 
 def between_participant_share(data: pd.DataFrame, columns: Sequence[str] = ("pv", "sparc")) -> pd.Series:
-    """Share of each column's variance that lies between the participants' means (eta squared of a one-way
-    layout: sum over trials of (participant mean - grand mean)**2 over the total sum of squares); 0 when
-    participants do not differ on average, 1 when every participant's trials are identical."""
+    """Share of each column's variance that lies between the participants' means.
+
+    Eta squared of a one-way layout: sum over trials of (participant mean - grand mean)**2 over the total
+    sum of squares; 0 when participants do not differ on average, 1 when every participant's trials are
+    identical.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        The trials, with ``participant`` and the columns (e.g. ``pv`` in m/s, ``sparc`` dimensionless).
+    columns : sequence of str
+        The columns (text).
+
+    Returns
+    -------
+    pandas.Series
+        The share of each column (dimensionless, 0 to 1).
+    """
     if "participant" not in data.columns:
         raise ValueError("data needs a participant column")
     out = {}

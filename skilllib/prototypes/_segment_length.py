@@ -49,9 +49,27 @@ def _residual(y: np.ndarray, X: np.ndarray) -> np.ndarray:
 
 
 def partial_correlation(data: pd.DataFrame, x: str, y: str, covariates: Sequence[str]) -> float:
-    """Pearson correlation of columns ``x`` and ``y`` after regressing each on ``covariates`` (with an
-    intercept, ordinary least squares) and keeping the residuals. With no covariates it is the plain
-    correlation. NaN when a residual is constant."""
+    """Pearson correlation of columns ``x`` and ``y`` after regressing each on ``covariates``.
+
+    Each is regressed with an intercept (ordinary least squares) and the residuals are kept. With no
+    covariates it is the plain correlation. NaN when a residual is constant.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        The trials, with the columns.
+    x : str
+        The first column (text).
+    y : str
+        The second column (text).
+    covariates : sequence of str
+        The covariate columns (text).
+
+    Returns
+    -------
+    float
+        The partial correlation (dimensionless, -1 to 1), or NaN.
+    """
     X = _design(data, covariates)
     rx, ry = (_residual(_design(data, [c])[:, 1], X) for c in (x, y))
     if np.std(rx) == 0 or np.std(ry) == 0:
@@ -60,7 +78,22 @@ def partial_correlation(data: pd.DataFrame, x: str, y: str, covariates: Sequence
 
 
 def variance_explained(data: pd.DataFrame, target: str, predictors: Sequence[str]) -> pd.Series:
-    """R^2 of ``target`` on each predictor alone (linear, with an intercept) and on ``all`` of them."""
+    """R^2 of ``target`` on each predictor alone (linear, with an intercept) and on ``all`` of them.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        The trials, with the columns.
+    target : str
+        The target column (text).
+    predictors : sequence of str
+        The predictor columns (text).
+
+    Returns
+    -------
+    pandas.Series
+        R^2 per predictor and ``all`` (dimensionless, 0 to 1).
+    """
     y = _design(data, [target])[:, 1]
     total = float(np.sum((y - y.mean()) ** 2))
     if total == 0:
@@ -71,8 +104,20 @@ def variance_explained(data: pd.DataFrame, target: str, predictors: Sequence[str
 
 
 def with_covariates(features: pd.DataFrame) -> pd.DataFrame:
-    """A copy of a feature table (valid trials) with ``log_duration`` (ln of duration in s) and
-    ``contact_ratio`` (contact speed / PV, dimensionless) added."""
+    """A copy of a feature table (valid trials) with ``log_duration`` and ``contact_ratio`` added.
+
+    ``log_duration`` is ln of the duration in s; ``contact_ratio`` the contact speed / PV (dimensionless).
+
+    Parameters
+    ----------
+    features : pandas.DataFrame
+        The feature table of :func:`skilllib.features.trial_features` (m/s, s).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The valid trials with the two columns added (dimensionless).
+    """
     out = features.copy()
     out["log_duration"] = np.log(out["duration"].astype(float))
     out["contact_ratio"] = out["contact_speed"].astype(float) / out["pv"].astype(float)
@@ -80,19 +125,47 @@ def with_covariates(features: pd.DataFrame) -> pd.DataFrame:
 
 
 def adjusted_sparc(data: pd.DataFrame, covariates: Sequence[str] = ("log_duration",)) -> pd.Series:
-    """SPARC minus its least-squares fit on ``covariates`` (with an intercept) across the given trials,
-    plus the mean SPARC (see :func:`with_covariates` for ``log_duration`` and ``contact_ratio``).
+    """SPARC minus its least-squares fit on ``covariates`` across the given trials, plus the mean SPARC.
 
+    The fit has an intercept; see :func:`with_covariates` for ``log_duration`` and ``contact_ratio``.
     Keeps SPARC's scale and mean and removes the part the covariates predict linearly, so the result is
     uncorrelated with each of them over these trials. A descriptive adjustment of this data set (the fit
-    is made on it), not a property of one movement."""
+    is made on it), not a property of one movement.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        The trials, with ``sparc`` (dimensionless) and the covariates.
+    covariates : sequence of str
+        The covariate columns (text).
+
+    Returns
+    -------
+    pandas.Series
+        The adjusted SPARC of each trial (dimensionless).
+    """
     y = _design(data, ["sparc"])[:, 1]
     return pd.Series(_residual(y, _design(data, covariates)) + y.mean(), index=data.index, name="sparc_adjusted")
 
 
 def sparc_by_length(features: pd.DataFrame, edges: Sequence[int] = LENGTH_EDGES) -> pd.DataFrame:
-    """Per range of segment samples ``n`` (bins (a, b]) of the valid trials: ``trials``, median and SD of
-    SPARC and the share of bands capped by fc (``capped share``)."""
+    """SPARC per range of segment samples ``n`` (bins (a, b]) of the valid trials.
+
+    Columns ``trials``, median and SD of SPARC and the share of bands capped by fc (``capped share``).
+
+    Parameters
+    ----------
+    features : pandas.DataFrame
+        The feature table of :func:`skilllib.features.trial_features` (``n`` in samples, ``sparc``
+        dimensionless).
+    edges : sequence of int
+        The bin edges of ``n`` (samples).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per bin: counts, SPARC median and SD, and the capped share (dimensionless).
+    """
     f = features[features["status"] != "invalid"]
     bins = pd.cut(f["n"].astype(float), list(edges))
     g = f.groupby(bins, observed=True)

@@ -3,7 +3,7 @@
 SPARC's band is capped at a maximum cut-off ``fc`` (Hz). On long, smooth profiles the amplitude
 threshold ends the band well below any sensible ``fc`` and the cap does not matter; on short segments
 cut at contact the spectrum is wide, the cap ends many bands, and the cap then decides the value
-(chapter 1). :func:`sparc_sensitivity` runs the clustering part of the pipeline -- features, selection,
+(chapter 2). :func:`sparc_sensitivity` runs the clustering part of the pipeline -- features, selection,
 silhouette sweep, K-means prototypes (:mod:`skilllib.features`, :mod:`skilllib.prototypes`) -- once per
 setting and compares every setting with the first one, the reference: which trials' SPARC changes and by
 how much, how many bands the cap ends, the adjusted Rand index between the two k-cluster partitions
@@ -28,6 +28,7 @@ from ..features import select, trial_features
 from ..recordings import Recordings
 from ..smoothness import SPARC_PARAMS
 from . import _kmeans as pt
+from ._json import json_value
 
 #: The settings the book compares: its own (the paper's 0-20 Hz) first, then the authors' Python default.
 DEFAULT_SETTINGS: tuple[dict[str, float], ...] = ({"fc": 20.0}, {"fc": 10.0})
@@ -36,7 +37,18 @@ CHANGE_TOL = 1e-9
 
 
 def setting_label(params: Mapping[str, float]) -> str:
-    """``"fc 20 Hz, amp_th 0.05, padlevel 4"`` for a complete parameter dict."""
+    """``"fc 20 Hz, amp_th 0.05, padlevel 4"`` for a complete parameter dict.
+
+    Parameters
+    ----------
+    params : mapping of str to float
+        ``fc`` (Hz), ``amp_th`` and ``padlevel`` (dimensionless).
+
+    Returns
+    -------
+    str
+        The label (text).
+    """
     return f"fc {params['fc']:g} Hz, amp_th {params['amp_th']:g}, padlevel {params['padlevel']:g}"
 
 
@@ -74,7 +86,15 @@ class SettingRun:
 
 @dataclass(frozen=True, eq=False)
 class SparcSensitivity:
-    """:func:`sparc_sensitivity`'s result: ``runs[0]`` is the reference, ``k`` the number of clusters."""
+    """:func:`sparc_sensitivity`'s result: ``runs[0]`` is the reference, ``k`` the number of clusters.
+
+    Attributes
+    ----------
+    runs : list of SettingRun
+        The clustering under each SPARC setting, the reference first.
+    k : int
+        The number of clusters (dimensionless).
+    """
 
     runs: list[SettingRun]
     k: int
@@ -173,8 +193,8 @@ class SparcSensitivity:
                 entry["prototypes"] = [
                     {
                         "cluster": int(c),
-                        "participant": _py(r["participant"]),
-                        "trial": _py(r["trial"]),
+                        "participant": json_value(r["participant"]),
+                        "trial": json_value(r["trial"]),
                         "pv": float(r["pv"]),
                         "sparc": float(r["sparc"]),
                         "kept": bool(r["kept"]),
@@ -185,22 +205,13 @@ class SparcSensitivity:
                 c = comp.loc[run.label]
                 entry["vs_reference"] = {
                     "n_sparc_changed": int(c["changed"]),
-                    "mean_abs_sparc_change": _num(c["mean |change|"]),
-                    "max_abs_sparc_change": _num(c["max |change|"]),
-                    "ari": _num(c["ARI"]),
+                    "mean_abs_sparc_change": json_value(c["mean |change|"]),
+                    "max_abs_sparc_change": json_value(c["max |change|"]),
+                    "ari": json_value(c["ARI"]),
                     "prototypes_kept": int(c["prototypes kept"]),
                 }
             out.append(entry)
         return {"k": self.k, "settings": out}
-
-
-def _py(v: Any) -> Any:
-    return v.item() if isinstance(v, np.generic) else v
-
-
-def _num(v: float) -> float | None:
-    v = float(v)
-    return v if np.isfinite(v) else None
 
 
 def _corr(a: pd.Series, b: pd.Series) -> float:
@@ -210,8 +221,23 @@ def _corr(a: pd.Series, b: pd.Series) -> float:
 
 
 def complete_params(setting: Mapping[str, float]) -> dict[str, float]:
-    """A setting with the book's defaults (:data:`skilllib.smoothness.SPARC_PARAMS`) filled in; ValueError
-    for a key that is not a SPARC parameter."""
+    """A setting with the book's defaults (:data:`skilllib.smoothness.SPARC_PARAMS`) filled in.
+
+    Parameters
+    ----------
+    setting : mapping of str to float
+        Some of ``fc`` (Hz), ``amp_th`` and ``padlevel`` (dimensionless).
+
+    Returns
+    -------
+    dict of str to float
+        All three: ``fc`` (Hz), ``amp_th`` and ``padlevel`` (dimensionless).
+
+    Raises
+    ------
+    ValueError
+        For a key that is not a SPARC parameter.
+    """
     unknown = set(setting) - set(SPARC_PARAMS)
     if unknown:
         raise ValueError(f"unknown SPARC parameter(s) {sorted(unknown)}; use fc, amp_th, padlevel")
@@ -219,7 +245,7 @@ def complete_params(setting: Mapping[str, float]) -> dict[str, float]:
 
 
 def sparc_sensitivity(
-    recordings: Recordings | pd.DataFrame,
+    recordings: Recordings,
     settings: Sequence[Mapping[str, float]] = DEFAULT_SETTINGS,
     *,
     k: int = pt.DEFAULT_K,
@@ -229,16 +255,38 @@ def sparc_sensitivity(
     reference: tuple[pd.DataFrame, pt.SilhouetteSweep | None] | None = None,
     lowpass: Any = "auto",
 ) -> SparcSensitivity:
-    """The clustering of the paper under each SPARC setting in ``settings`` (dicts of fc in Hz, amp_th,
-    padlevel; missing keys take the book's defaults), compared with the first.
+    """The clustering of the paper under each SPARC setting in ``settings``, compared with the first.
 
     Per setting: :func:`~skilllib.features.trial_features`, the selected trials, the silhouette sweep over
     ``k_range`` and the ``k``-cluster fit (k reduced to the largest the sweep reached; the sweep's own
-    shrink warnings are not repeated). ``scaling`` and ``random_state`` as in
-    :func:`skilllib.prototypes.fit_prototypes`. ``reference``: the first setting's features and sweep when
-    the caller has them already (the pipeline), computed with the same options; they are not recomputed.
-    ``lowpass``: the positions' filter (:func:`skilllib.features.trial_features`), the same for every
-    setting (the pipeline passes the one its run chose). Returns :class:`SparcSensitivity`.
+    shrink warnings are not repeated).
+
+    Parameters
+    ----------
+    recordings : Recordings or pandas.DataFrame
+        The recordings (t in s, positions in m).
+    settings : sequence of mapping of str to float
+        The SPARC settings: dicts of ``fc`` (Hz), ``amp_th`` and ``padlevel`` (dimensionless); missing keys
+        take the book's defaults. The first is the reference.
+    k : int
+        The number of clusters (dimensionless).
+    scaling : {"raw", "standard"}
+        The clustering space (text), as in :func:`skilllib.prototypes.fit_prototypes`.
+    random_state : int
+        The seed of the fits (dimensionless), as in :func:`skilllib.prototypes.fit_prototypes`.
+    k_range : tuple of int
+        (k_min, k_max) of the silhouette sweep (dimensionless).
+    reference : tuple or None
+        The first setting's features and sweep when the caller has them already (the pipeline), computed
+        with the same options; they are not recomputed. None: computed here.
+    lowpass : Any
+        The positions' filter (:func:`skilllib.features.trial_features`; cut-off in Hz), the same for every
+        setting (the pipeline passes the one its run chose).
+
+    Returns
+    -------
+    SparcSensitivity
+        The clustering under each setting (PV in m/s, SPARC dimensionless).
     """
     if not settings:
         raise ValueError("no SPARC settings to compare")

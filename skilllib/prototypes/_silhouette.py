@@ -34,47 +34,41 @@ silhouettes of all repeats with their clusters' labels and the estimate as the a
 
 from __future__ import annotations
 
-import functools
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, TypeVar
+from typing import Any
 
 import numpy as np
 from sklearn.metrics import silhouette_samples
-from threadpoolctl import ThreadpoolController  # installed with scikit-learn
+
+from ..smoothness import single_threaded
 
 SILHOUETTE_EXACT_MAX = 5_000  #: points; above: the estimate (exact sweep k = 2..16 at 5,000: 4.8 s CPU)
 SILHOUETTE_SAMPLE = 1_000  #: points per subsample (``silhouette_samples`` on 1,000 points: 0.011 s)
 SILHOUETTE_REPEATS = 10  #: subsamples per estimate (SD of one repeat ~0.008, of their mean ~0.0026)
 SILHOUETTE_MIN_PER_CLUSTER = 2  #: sampled points per cluster at least (a needs a second member)
 
-_F = TypeVar("_F", bound=Callable[..., Any])
-
-
-@functools.lru_cache(maxsize=1)
-def _controller() -> ThreadpoolController:
-    return ThreadpoolController()
-
-
-def _single_threaded(func: _F) -> _F:
-    """Run ``func`` with OpenMP and BLAS limited to one thread. K-means on a few hundred points gains
-    nothing from threads and loses badly when cores are busy (sweep 0.55 s vs 7.8 s on two loaded cores); on
-    68,000 points 2 threads moved centres by 1e-15 (OpenMP reduction order): one thread is also reproducible."""
-
-    @functools.wraps(func)
-    def wrapper(*args: Any, **kwargs: Any) -> Any:
-        with _controller().limit(limits=1):
-            return func(*args, **kwargs)
-
-    return wrapper  # type: ignore[return-value]
-
 
 def failing_clusters(samples: np.ndarray, labels: np.ndarray, average: float | None = None) -> list[int]:
-    """Clusters none of whose trials has a silhouette above the average (default: mean of ``samples``).
+    """Clusters none of whose trials has a silhouette above the average.
 
     Such a cluster lies entirely below the average line of the silhouette plot, which scikit-learn's
     silhouette example reads as a bad choice of k. A singleton cluster has silhouette 0 (Rousseeuw 1987)
     and so fails whenever the average is positive.
+
+    Parameters
+    ----------
+    samples : numpy.ndarray
+        Per-trial silhouettes (dimensionless, -1 to 1).
+    labels : numpy.ndarray
+        The cluster label of each trial (dimensionless).
+    average : float or None
+        The average silhouette to compare with (dimensionless); None: the mean of ``samples``.
+
+    Returns
+    -------
+    list of int
+        The failing clusters' labels (dimensionless).
     """
     samples, labels = np.asarray(samples, dtype=float), np.asarray(labels)
     avg = float(samples.mean()) if average is None else float(average)
@@ -87,6 +81,20 @@ def is_valid(samples: np.ndarray, labels: np.ndarray, average: float | None = No
     Operationalises the paper's "2 <= n clusters <= 16 produces valid clusters" with scikit-learn's
     example criterion (every cluster reaches above the average silhouette). That example also weighs the
     spread of cluster sizes; this criterion does not.
+
+    Parameters
+    ----------
+    samples : numpy.ndarray
+        Per-trial silhouettes (dimensionless, -1 to 1).
+    labels : numpy.ndarray
+        The cluster label of each trial (dimensionless).
+    average : float or None
+        The average silhouette to compare with (dimensionless); None: the mean of ``samples``.
+
+    Returns
+    -------
+    bool
+        True when the clustering is valid.
     """
     samples = np.asarray(samples, dtype=float)  # averaged in float64, as failing_clusters does
     avg = float(samples.mean()) if average is None else float(average)
@@ -179,7 +187,7 @@ def subsample_silhouette(
     return np.concatenate(pooled), est
 
 
-@_single_threaded
+@single_threaded()  # OpenMP and BLAS on one thread: faster on busy cores, reproducible
 def silhouette(
     z: np.ndarray,
     labels: np.ndarray,

@@ -14,6 +14,7 @@ __getattr__, __dir__, __all__ = _lazy.attach(
     __name__,
     submod_attrs={
         "_c3d": ["read_c3d"],
+        "_columns": ["COLUMNS", "ID_COLUMNS", "POSITION_COLUMNS"],
         "_checks": ["check_corpus_units", "corpus_rate", "MAX_RANGE_M", "MAX_TYPICAL_SPEED", "MIN_SAMPLES"],
         "_csv": ["read_table", "record_lines"],
         "_errors": ["DataFormatError", "MAX_QUOTE", "quote"],
@@ -29,7 +30,6 @@ __getattr__, __dir__, __all__ = _lazy.attach(
         ],
         "_parquet": ["is_parquet", "parquet_files", "read_parquet"],
         "_recordings": [
-            "COLUMNS",
             "format_recordings",
             "natural_key",
             "read_recordings",

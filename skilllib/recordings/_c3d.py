@@ -54,7 +54,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ._errors import DataFormatError
+from ._errors import DataFormatError, check_file
 from ._mapping import unit_factor
 
 NO_CONTACT = np.nan  #: the contact value of every sample when a file has no contact signal
@@ -76,10 +76,7 @@ def _texts(reader, name: str) -> list[str]:
 
 def _read(path: Path):
     """(reader, list of (points, analog) per frame); DataFormatError for anything the parser refuses."""
-    if not path.exists():
-        raise DataFormatError(f"{path}: file not found")
-    if path.is_dir():
-        raise DataFormatError(f"{path}: is a directory, not a C3D file")
+    check_file(path, "C3D")
     import c3d as c3dlib  # first use only: keeps `import skilllib` and `--help` fast
 
     raw = path.read_bytes()
@@ -149,10 +146,34 @@ def read_c3d(
     axes: :func:`skilllib.recordings.map_frame` with ``up_axis`` rotates them. Rules (marker choice,
     units, time origin, gaps, contact threshold) in the module docstring.
 
-    Raises :class:`~skilllib.recordings.DataFormatError` (one line naming the file) when the file is missing,
-    not a C3D file, damaged or cut short, has no or several markers and no ``marker`` (listing them),
-    has no marker ``marker`` (listing them), has no usable ``POINT:RATE``, has units other than m, cm,
-    mm, or has no channel or event named by an explicit ``contact_channel`` (listing those it has).
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The C3D file (text).
+    marker : str or None
+        Name of the marker to read (text); None: the file's only marker.
+    contact_channel : str or None
+        Name of the analog channel or event that gives contact in a C3D file (text); None: ``"contact"``
+        when the file has it, else contact is left NaN for the height rule.
+    contact_threshold : float or None
+        Analog level above which a C3D frame is in contact, in the channel's own unit (V, N, ...; taken as
+        dimensionless here); None: midway between the channel's minimum and maximum in the file.
+    units : str or None
+        Unit of the file's positions (text: ``"m"``, ``"cm"`` or ``"mm"``), overriding a missing or wrong
+        header; None: the file's own.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``t`` (s), ``x, y, z`` (m, the file's axes), ``contact`` (0/1 or NaN).
+
+    Raises
+    ------
+    DataFormatError
+        One line naming the file, when the file is missing, not a C3D file, damaged or cut short, has no or
+        several markers and no ``marker`` (listing them), has no marker ``marker`` (listing them), has no
+        usable ``POINT:RATE``, has units other than m, cm, mm, or has no channel or event named by an
+        explicit ``contact_channel`` (listing those it has).
     """
     path = Path(path)
     reader, frames = _read(path)

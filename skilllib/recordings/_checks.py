@@ -22,6 +22,7 @@ import numpy as np
 import pandas as pd
 
 from . import _timing as timing
+from ._columns import POSITION_COLUMNS
 from ._errors import DataFormatError
 from ._runs import Runs
 from ._timing import MIN_RATE_HZ, MIXED_FRACTION, RATE_TOLERANCE, TRIM, regular_mean_interval
@@ -29,7 +30,6 @@ from ._timing import MIN_RATE_HZ, MIXED_FRACTION, RATE_TOLERANCE, TRIM, regular_
 MIN_SAMPLES = 5  #: fewer samples than this make a trial invalid
 MAX_RANGE_M = 2.0  #: a trial spanning more than this (m) has wrong units or a glitch (device: 0.38 m)
 MAX_TYPICAL_SPEED = 20.0  #: m/s; a typical (median over trials of the 95th percentile) speed above it: wrong units
-POSITION_COLUMNS = ("x", "y", "z")
 
 
 def trial_problem(
@@ -138,9 +138,31 @@ def trial_stats(t: np.ndarray, pos: np.ndarray, runs: Runs, which: np.ndarray) -
 
 
 def corpus_rate(source: str, med_dt: np.ndarray, mean_dt: np.ndarray) -> tuple[float, float]:
-    """``(ref, dt)`` in s of a corpus from its usable trials' median and regular mean intervals (the
-    rest NaN): the median of the medians and the file's interval; raises DataFormatError for time stamps
-    not in seconds and for mixed rates (see :mod:`skilllib.recordings`)."""
+    """``(ref, dt)`` of a corpus from its usable trials' median and regular mean intervals.
+
+    The median of the medians and the file's interval (see :mod:`skilllib.recordings`).
+
+    Parameters
+    ----------
+    source : str
+        The file, for messages (text).
+    med_dt : numpy.ndarray
+        Each trial's median interval (s), NaN for trials not usable.
+    mean_dt : numpy.ndarray
+        Each trial's regular mean interval (s), NaN for trials not usable.
+
+    Returns
+    -------
+    ref : float
+        The median of the trials' median intervals (s).
+    dt : float
+        The file's sampling interval (s).
+
+    Raises
+    ------
+    DataFormatError
+        For time stamps not in seconds and for mixed rates.
+    """
     ok = ~np.isnan(med_dt)
     ref = float(np.median(med_dt[ok]))
     if ref > 1 / MIN_RATE_HZ:
@@ -184,8 +206,24 @@ def _check_units(source: str, stats: TrialStats, reasons: list[str], dt: float, 
 
 
 def check_corpus_units(source: str, span: np.ndarray, speed95: np.ndarray) -> None:
-    """DataFormatError when the typical trial (median over trials of the span, m, and of the 95th
-    percentile speed, m/s) says the positions are not in metres."""
+    """DataFormatError when the typical trial says the positions are not in metres.
+
+    The typical trial: the median over trials of the span (m) and of the 95th percentile speed (m/s).
+
+    Parameters
+    ----------
+    source : str
+        The file, for the message (text).
+    span : numpy.ndarray
+        Each trial's span of positions (m, if the positions are in metres).
+    speed95 : numpy.ndarray
+        Each trial's 95th percentile speed (m/s, if the positions are in metres).
+
+    Raises
+    ------
+    DataFormatError
+        When the typical span or speed is too large for metres.
+    """
     if np.median(span) > MAX_RANGE_M or np.median(speed95) > MAX_TYPICAL_SPEED:
         raise DataFormatError(
             f"{source}: positions look like millimetres or centimetres, not metres (a typical trial spans "

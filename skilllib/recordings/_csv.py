@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ._errors import DataFormatError
+from ._errors import DataFormatError, check_file
 
 
 def _read_text(path: Path) -> str:
@@ -25,10 +25,7 @@ def _read_text(path: Path) -> str:
     a folder, or not UTF-8 text."""
     from pandas.io.common import get_handle  # how read_csv opens (and decompresses) a path
 
-    if not path.exists():
-        raise DataFormatError(f"{path}: file not found")
-    if path.is_dir():
-        raise DataFormatError(f"{path}: is a directory, not a CSV file")
+    check_file(path, "CSV")
     try:
         with get_handle(path, "r", encoding="utf-8-sig", compression="infer") as h:
             return h.handle.read()
@@ -41,8 +38,21 @@ def _read_text(path: Path) -> str:
 
 
 def record_lines(text: str) -> np.ndarray:
-    """1-based physical line of each record of a CSV text after its header, blank lines included as
-    records (as ``read_csv(skip_blank_lines=False)`` keeps them): a quoted cell spanning lines counts them."""
+    """1-based physical line of each record of a CSV text after its header.
+
+    Blank lines are included as records (as ``read_csv(skip_blank_lines=False)`` keeps them): a quoted
+    cell spanning lines counts them.
+
+    Parameters
+    ----------
+    text : str
+        The CSV file's text (text).
+
+    Returns
+    -------
+    numpy.ndarray of int
+        The physical line of each record (dimensionless).
+    """
     if '"' not in text:  # one record per line
         n = text.count("\n") + (0 if text.endswith("\n") else 1)
         return np.arange(2, n + 1)
@@ -55,8 +65,27 @@ def record_lines(text: str) -> np.ndarray:
 
 
 def read_table(path: str | Path) -> tuple[pd.DataFrame, np.ndarray]:
-    """A CSV file as a table of text cells (nothing converted; blank lines kept as empty rows) and the
-    physical line of each row. DataFormatError for a missing, empty, binary or malformed file."""
+    """A CSV file as a table of text cells and the physical line of each row.
+
+    Nothing is converted; blank lines are kept as empty rows.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The CSV file (text).
+
+    Returns
+    -------
+    table : pandas.DataFrame
+        The cells (text).
+    lines : numpy.ndarray of int
+        The 1-based physical line of each row (dimensionless).
+
+    Raises
+    ------
+    DataFormatError
+        For a missing, empty, binary or malformed file.
+    """
     path = Path(path)
     text = _read_text(path)
     if not text.strip():

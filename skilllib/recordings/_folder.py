@@ -31,8 +31,10 @@ import numpy as np
 import pandas as pd
 
 from ._c3d import read_c3d
+from ._columns import ID_COLUMNS
 from ._errors import DataFormatError
 from ._mapping import map_frame, rename_columns, unit_factor, up_axis_rotation
+from ._recordings import natural_key
 from ._trc import read_trc
 
 C3D_SUFFIXES = (".c3d",)
@@ -42,7 +44,19 @@ TRIAL_COLUMNS = ("t", "x", "y", "z", "contact")  #: columns of one trial's table
 
 
 class FileProblem(NamedTuple):
-    """A file that could not be read: ``reason`` is one line; ``participant``/``trial`` as text or None."""
+    """A file that could not be read: ``reason`` is one line; ``participant``/``trial`` as text or None.
+
+    Parameters
+    ----------
+    path : str
+        The file, relative to the folder (text).
+    participant : str or None
+        The participant its name gives (text), or None when the name gives none.
+    trial : str or None
+        The trial its name gives (text), or None when the name gives none.
+    reason : str
+        What is wrong with it, one line (text).
+    """
 
     path: str
     participant: str | None
@@ -109,12 +123,6 @@ def trial_ids(stem: str, folder: str | None, pattern: re.Pattern | None) -> tupl
     return participant, trial
 
 
-def natural_key(text: str) -> tuple:
-    """Sort key: digit runs compare as numbers, other runs as lower-case text, then the text itself."""
-    parts = re.split(r"(\d+)", text)
-    return tuple((0, int(p), "") if p.isdigit() else (1, 0, p.lower()) for p in parts if p), text
-
-
 def read_trial_csv(path: Path, *, columns: Mapping[str, str] | None = None) -> pd.DataFrame:
     """One trial's CSV (compression inferred from the name): columns ``t`` (s), ``x, y, z`` and, when
     present, ``contact``, after renaming by ``columns`` (units and axes: :func:`map_frame`). A table
@@ -132,7 +140,7 @@ def read_trial_csv(path: Path, *, columns: Mapping[str, str] | None = None) -> p
         msg = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
         raise DataFormatError(f"{path}: not a readable CSV table ({msg[:200]})") from None
     df = df.rename(columns=lambda c: str(c).strip())
-    ids = [c for c in df.columns if (columns or {}).get(c, c) in ("participant", "trial")]
+    ids = [c for c in df.columns if (columns or {}).get(c, c) in ID_COLUMNS]
     if ids:
         raise DataFormatError(
             f"{path}: has participant/trial columns ({', '.join(ids)}); a folder holds one "
@@ -231,8 +239,46 @@ def read_folder(
     ``name_pattern``) is in the module docstring. Two files giving one (participant, trial) are a
     problem for the second.
 
-    Raises :class:`~skilllib.recordings.DataFormatError` when ``path`` is not a folder, an option is wrong
-    (unit, axis, pattern), the folder has no such file, or none of its files can be read.
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The folder (text).
+    marker : str or None
+        Name of the marker to read (text); None: the file's only marker.
+    contact_channel : str or None
+        Name of the analog channel or event that gives contact in a C3D file (text); None: ``"contact"``
+        when the file has it, else contact is left NaN for the height rule.
+    contact_threshold : float or None
+        Analog level above which a C3D frame is in contact, in the channel's own unit (V, N, ...; taken as
+        dimensionless here); None: midway between the channel's minimum and maximum in the file.
+    units : str or None
+        Unit of the file's positions (text: ``"m"``, ``"cm"`` or ``"mm"``), overriding a missing or wrong
+        header; None: the file's own.
+    up_axis : str or None
+        The lab's vertical axis with its sign (text: ``y``, ``-y``, ``z``, ``-z``, ``x``, ``-x``), rotated
+        to the book's +y; None: already ``y``.
+    contact_height : float or None
+        Height of the touched surface in the book's frame (m): contact from the first sample at or below
+        it, for trials without a contact signal; None: no height rule.
+    columns : mapping of str to str or None
+        Column renames ``{old: new}`` for the CSV files (text); None: no renaming.
+    name_pattern : str, re.Pattern or None
+        Regular expression for the file names of a folder (text), with named groups ``trial`` and,
+        optionally, ``participant``; None: the naming rule of :func:`read_folder`.
+
+    Returns
+    -------
+    frame : pandas.DataFrame
+        The long table: ids (text), ``t`` (s), ``x, y, z`` (m, the book's frame), ``contact`` (0/1 or NaN),
+        ``file`` (text) and ``sample`` (1-based, samples).
+    problems : list of FileProblem
+        The files that could not be read.
+
+    Raises
+    ------
+    DataFormatError
+        When ``path`` is not a folder, an option is wrong (unit, axis, pattern), the folder has no such
+        file, or none of its files can be read.
     """
     root = Path(path)
     if not root.is_dir():

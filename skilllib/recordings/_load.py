@@ -36,8 +36,9 @@ import numpy as np
 import pandas as pd
 
 from ._c3d import read_c3d
+from ._columns import COLUMNS, ID_COLUMNS, POSITION_COLUMNS
 from ._csv import read_table
-from ._errors import DataFormatError, quote
+from ._errors import DataFormatError, check_file, quote
 from ._folder import (
     FileProblem,
     compile_pattern,
@@ -56,10 +57,10 @@ from ._mapping import (
     rename_columns,
     up_axis_rotation,
 )
-from ._recordings import COLUMNS, NA_TEXT, POSITION_COLUMNS, Recordings, recordings_from_frame
+from ._parquet import is_parquet
+from ._recordings import NA_TEXT, Recordings, read_recordings, recordings_from_frame
 from ._trc import read_trc
 
-ID_COLUMNS = ("participant", "trial")
 #: the cells pandas reads as missing by default (pandas.read_csv ``na_values``); kept for every column but the ids
 DEFAULT_NA = (
     "",
@@ -105,14 +106,28 @@ def read_csv_table(path: str | Path, *, columns: Mapping[str, str] | None = None
     an empty id is ``''`` (and a blank line NaN in every column, as the validation expects). Other
     columns keep pandas' defaults (numbers; ``NA``, ``nan``, empty are missing). Column names are not
     renamed here (:func:`map_frame` does it); blank lines are kept so that row ``r`` is file line
-    ``r + 2``. Raises :class:`~skilllib.recordings.DataFormatError` naming the file when it is missing, a
-    folder, empty, not text, not a regular CSV table or a broken archive.
+    ``r + 2``.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The CSV file (text).
+    columns : mapping of str to str or None
+        Column renames ``{old: new}`` (text), to find the id columns; None: no renaming.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The table as in the file (units as in the file), ids as text.
+
+    Raises
+    ------
+    DataFormatError
+        Naming the file when it is missing, a folder, empty, not text, not a regular CSV table or a broken
+        archive.
     """
     path = Path(path)
-    if not path.exists():
-        raise DataFormatError(f"{path}: file not found")
-    if path.is_dir():
-        raise DataFormatError(f"{path}: is a directory, not a CSV file")
+    check_file(path, "CSV")
     opts = dict(skipinitialspace=True, skip_blank_lines=False)
     try:
         names = [str(c) for c in pd.read_csv(path, nrows=0, **opts).columns]
@@ -158,17 +173,52 @@ def read_any(
 ) -> tuple[pd.DataFrame, list[FileProblem]]:
     """Read recordings from a folder, a ``.c3d`` or ``.trc`` file (one trial) or a CSV table (many).
 
-    Returns ``(frame, problems)``: the long table in the book's frame with identifiers as text (for
-    :func:`skilllib.recordings.recordings_from_frame`) and the files of a folder that could not be read
-    (:class:`FileProblem`; always empty for a single file, whose problems raise). The dispatch table and
-    the options are in the module docstring; ``columns`` may be a ``"old=new,..."`` string.
+    The dispatch table and the options are in the module docstring. A single C3D/TRC file is named like a
+    file directly in a folder: ``PARTICIPANT_TRIAL`` split at the last ``_`` (or ``name_pattern``); a stem
+    without ``_`` is participant and trial both.
 
-    A single C3D/TRC file is named like a file directly in a folder: ``PARTICIPANT_TRIAL`` split at the
-    last ``_`` (or ``name_pattern``); a stem without ``_`` is participant and trial both.
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file or folder to read (text).
+    marker : str or None
+        Name of the marker to read (text); None: the file's only marker.
+    contact_channel : str or None
+        Name of the analog channel or event that gives contact in a C3D file (text); None: ``"contact"``
+        when the file has it, else contact is left NaN for the height rule.
+    contact_threshold : float or None
+        Analog level above which a C3D frame is in contact, in the channel's own unit (V, N, ...; taken as
+        dimensionless here); None: midway between the channel's minimum and maximum in the file.
+    units : str or None
+        Unit of the file's positions (text: ``"m"``, ``"cm"`` or ``"mm"``), overriding a missing or wrong
+        header; None: the file's own.
+    up_axis : str or None
+        The lab's vertical axis with its sign (text: ``y``, ``-y``, ``z``, ``-z``, ``x``, ``-x``), rotated
+        to the book's +y; None: already ``y``.
+    contact_height : float or None
+        Height of the touched surface in the book's frame (m): contact from the first sample at or below
+        it, for trials without a contact signal; None: no height rule.
+    columns : mapping of str to str, str or None
+        Column renames ``{old: new}`` (text), or the ``"old=new,..."`` string of ``--columns``; None: no
+        renaming.
+    name_pattern : str, re.Pattern or None
+        Regular expression for the file names of a folder (text), with named groups ``trial`` and,
+        optionally, ``participant``; None: the naming rule of :func:`read_folder`.
 
-    Raises :class:`~skilllib.recordings.DataFormatError` (one line naming the file) when the path cannot be
-    read as recordings: see :func:`read_folder`, :func:`read_c3d`, :func:`read_trc`,
-    :func:`read_csv_table` and :func:`map_frame`.
+    Returns
+    -------
+    frame : pandas.DataFrame
+        The long table in the book's frame with identifiers as text, ``t`` (s), ``x, y, z`` (m), ``contact``
+        (0/1), for :func:`skilllib.recordings.recordings_from_frame`.
+    problems : list of FileProblem
+        The files of a folder that could not be read (always empty for a single file, whose problems
+        raise).
+
+    Raises
+    ------
+    DataFormatError
+        One line naming the file, when the path cannot be read as recordings: see :func:`read_folder`,
+        :func:`read_c3d`, :func:`read_trc`, :func:`read_csv_table` and :func:`map_frame`.
     """
     path = Path(path)
     cols = parse_columns(columns) if isinstance(columns, str) else columns
@@ -186,8 +236,7 @@ def read_any(
         )
     kind = file_kind(path)
     if kind in ("c3d", "trc"):
-        if not path.exists():
-            raise DataFormatError(f"{path}: file not found")
+        check_file(path, kind.upper())  # before the name is read: a missing file says so
         stem = file_stem(path)
         try:
             participant, trial = trial_ids(stem, None, compile_pattern(name_pattern))
@@ -251,15 +300,62 @@ def load_recordings(
     contact_height: float | None = None,
     name_pattern: str | re.Pattern | None = None,
 ) -> Recordings:
-    """Validated :class:`~skilllib.recordings.Recordings` from a path (folder, C3D, TRC or CSV, see
-    :func:`read_any`), a DataFrame or Recordings, mapped by the options (module docstring).
+    """Validated :class:`~skilllib.recordings.Recordings` from a path, a DataFrame or Recordings.
 
-    A CSV is read as text with its physical line numbers (:func:`skilllib.recordings.read_table`), so that
-    messages name file lines; its columns are renamed before anything else, so ``--columns`` may name the
-    file's own columns. Files of a folder that cannot be read are kept as ``invalid`` trials with their
-    reason (file name and problem), never dropped; messages about a sample of a folder's file name the
-    file and the sample. Raises :class:`~skilllib.recordings.DataFormatError` for what cannot be read at all.
+    A path is a folder, C3D, TRC or CSV file (see :func:`read_any`), mapped by the options (module
+    docstring). A CSV is read as text with its physical line numbers
+    (:func:`skilllib.recordings.read_table`), so that messages name file lines; its columns are renamed
+    before anything else, so ``--columns`` may name the file's own columns. Files of a folder that cannot
+    be read are kept as ``invalid`` trials with their reason (file name and problem), never dropped;
+    messages about a sample of a folder's file name the file and the sample.
+
+    Parameters
+    ----------
+    data : str, pathlib.Path, pandas.DataFrame or Recordings
+        The recordings: a path (text) or a long table (``t`` in s, positions in ``units``).
+    columns : mapping of str to str, str or None
+        Column renames ``{old: new}`` (text), or the ``"old=new,..."`` string of ``--columns``; None: no
+        renaming.
+    units : str or None
+        Unit of the file's positions (text: ``"m"``, ``"cm"`` or ``"mm"``), overriding a missing or wrong
+        header; None: the file's own.
+    up_axis : str or None
+        The lab's vertical axis with its sign (text: ``y``, ``-y``, ``z``, ``-z``, ``x``, ``-x``), rotated
+        to the book's +y; None: already ``y``.
+    marker : str or None
+        Name of the marker to read (text); None: the file's only marker.
+    contact_channel : str or None
+        Name of the analog channel or event that gives contact in a C3D file (text); None: ``"contact"``
+        when the file has it, else contact is left NaN for the height rule.
+    contact_threshold : float or None
+        Analog level above which a C3D frame is in contact, in the channel's own unit (V, N, ...; taken as
+        dimensionless here); None: midway between the channel's minimum and maximum in the file.
+    contact_height : float or None
+        Height of the touched surface in the book's frame (m): contact from the first sample at or below
+        it, for trials without a contact signal; None: no height rule.
+    name_pattern : str, re.Pattern or None
+        Regular expression for the file names of a folder (text), with named groups ``trial`` and,
+        optionally, ``participant``; None: the naming rule of :func:`read_folder`.
+
+    Returns
+    -------
+    Recordings
+        The validated recordings (t in s, positions in m with y up, fs in Hz).
+
+    Raises
+    ------
+    DataFormatError
+        For what cannot be read at all.
     """
+    given = (columns, units, up_axis, marker, contact_channel, contact_threshold, contact_height, name_pattern)
+    if all(v is None for v in given):  # nothing to map: the book's format as it is
+        if isinstance(data, Recordings):
+            return data
+        if isinstance(data, pd.DataFrame):
+            return recordings_from_frame(data)
+        path = Path(data)
+        if is_parquet(path) or not path.is_dir() and file_kind(path) not in ("c3d", "trc"):
+            return read_recordings(path)  # pyarrow's reader for a plain CSV; Parquet files and folders
     opts = dict(
         columns=parse_columns(columns) if isinstance(columns, str) else columns,
         units=units,

@@ -38,8 +38,8 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
+from ._columns import POSITION_COLUMNS
 from ._errors import DataFormatError, quote
-from ._recordings import POSITION_COLUMNS
 
 UNIT_FACTORS: dict[str, float] = {"m": 1.0, "cm": 0.01, "mm": 0.001}  #: metres per unit
 
@@ -66,8 +66,26 @@ def unit_factor(units: str, source: str = "<DataFrame>") -> float:
 
 
 def up_axis_rotation(up_axis: str) -> np.ndarray:
-    """The proper rotation (3 x 3) taking ``up_axis`` (``y``, ``-y``, ``z``, ``-z``, ``x``, ``-x``; a
-    leading ``+`` allowed) to the book's ``+y``: ``p_book = R @ p_lab``; table in the module docstring."""
+    """The proper rotation (3 x 3) taking ``up_axis`` to the book's ``+y``: ``p_book = R @ p_lab``.
+
+    The table is in the module docstring.
+
+    Parameters
+    ----------
+    up_axis : str
+        The lab's vertical axis (text: ``y``, ``-y``, ``z``, ``-z``, ``x``, ``-x``; a leading ``+``
+        allowed).
+
+    Returns
+    -------
+    numpy.ndarray, shape (3, 3)
+        The rotation matrix R (dimensionless).
+
+    Raises
+    ------
+    DataFormatError
+        For an unknown axis.
+    """
     key = str(up_axis).strip().lower().removeprefix("+")
     if key not in UP_AXIS_ROTATIONS:
         raise DataFormatError(f"unknown up axis {up_axis!r} (known: {', '.join(UP_AXIS_ROTATIONS)})")
@@ -77,8 +95,20 @@ def up_axis_rotation(up_axis: str) -> np.ndarray:
 def parse_columns(spec: str) -> dict[str, str]:
     """``"old=new,old2=new2"`` (the ``--columns`` option) as ``{old: new}``; spaces around names ignored.
 
-    Raises :class:`~skilllib.recordings.DataFormatError` for an item without ``=``, an empty name or an old name
-    given twice.
+    Parameters
+    ----------
+    spec : str
+        The option's value (text).
+
+    Returns
+    -------
+    dict of str to str
+        The renames (text).
+
+    Raises
+    ------
+    DataFormatError
+        For an item without ``=``, an empty name or an old name given twice.
     """
     out: dict[str, str] = {}
     for item in str(spec).split(","):
@@ -141,8 +171,22 @@ def _positions(df: pd.DataFrame, source: str, first_line: int | None) -> np.ndar
 
 
 def contact_from_height(y: np.ndarray, contact_height: float) -> np.ndarray:
-    """The height rule for one trial: 1.0 from the first sample with ``y <= contact_height`` (both in m)
-    on, 0.0 before; all 0 when ``y`` never gets that low (NaN samples never count as low)."""
+    """The height rule for one trial: 1.0 from the first sample with ``y <= contact_height`` on, 0.0 before.
+
+    All 0 when ``y`` never gets that low (NaN samples never count as low).
+
+    Parameters
+    ----------
+    y : numpy.ndarray, shape (N,)
+        The heights of the trial's samples (m).
+    contact_height : float
+        The height of the touched surface (m).
+
+    Returns
+    -------
+    numpy.ndarray, shape (N,)
+        The contact flag, 0.0 or 1.0 (dimensionless).
+    """
     y = np.asarray(y, dtype=float)
     low = np.flatnonzero(y <= contact_height)
     c = np.zeros(len(y))
@@ -170,17 +214,41 @@ def map_frame(
 ) -> pd.DataFrame:
     """``df`` in the book's frame: columns renamed, positions in m, ``y`` up, contact filled where absent.
 
-    The four steps and the rotation matrices are in the module docstring. ``units`` is the unit of the
-    table's ``x, y, z`` (None: already m); ``up_axis`` the lab's vertical axis with its sign (None: already
-    ``y``); ``contact_height`` the height of the touched surface in m, in the book's frame (after the unit
-    and axis change). Trials are told apart by ``participant`` and ``trial`` when the table has them
-    (a table without them is one trial, as a C3D or TRC file). Other columns pass through unchanged;
-    identifiers are never converted. ``source`` names the table in messages; ``first_line`` (the file
-    line of row 0, e.g. 2 after a CSV header) makes them name file lines instead of rows.
+    The four steps and the rotation matrices are in the module docstring. Trials are told apart by
+    ``participant`` and ``trial`` when the table has them (a table without them is one trial, as a C3D or
+    TRC file). Other columns pass through unchanged; identifiers are never converted.
 
-    Raises :class:`~skilllib.recordings.DataFormatError` for an unknown unit or axis, a ``columns`` entry
-    naming a column that does not exist, a position cell that is not a number (only when positions are
-    changed), and a table with no contact signal for some trial and no ``contact_height``.
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The table: ``t`` (s), ``x, y, z`` (in ``units``), ids (text), ``contact`` (0/1) if present.
+    columns : mapping of str to str or None
+        Column renames ``{old: new}`` (text); None: no renaming.
+    units : str or None
+        The unit of the table's ``x, y, z`` (text: ``"m"``, ``"cm"``, ``"mm"``); None: already m.
+    up_axis : str or None
+        The lab's vertical axis with its sign (text: ``y``, ``-y``, ``z``, ``-z``, ``x``, ``-x``); None:
+        already ``y``.
+    contact_height : float or None
+        The height of the touched surface in the book's frame, after the unit and axis change (m); None:
+        no height rule.
+    source : str
+        The name of the table in messages (text).
+    first_line : int or None
+        The file line of row 0 (e.g. 2 after a CSV header; dimensionless), so that messages name file
+        lines instead of rows; None: rows.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The table with ``t`` (s), ``x, y, z`` (m, y up) and ``contact`` (0/1).
+
+    Raises
+    ------
+    DataFormatError
+        For an unknown unit or axis, a ``columns`` entry naming a column that does not exist, a position
+        cell that is not a number (only when positions are changed), and a table with no contact signal for
+        some trial and no ``contact_height``.
     """
     factor = unit_factor(units, source) if units is not None else None
     try:

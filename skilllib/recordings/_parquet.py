@@ -19,9 +19,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ._columns import ID_COLUMNS, POSITION_COLUMNS
 from ._errors import DataFormatError
-
-POSITIONS = ("x", "y", "z")
 
 
 def frame_from_batches(
@@ -35,9 +34,9 @@ def frame_from_batches(
     import pyarrow as pa
 
     numbers: dict[str, np.ndarray] = {c: np.empty(n_rows) for c in number_columns}
-    if all(c in number_columns for c in POSITIONS):
+    if all(c in number_columns for c in POSITION_COLUMNS):
         pos = np.empty((n_rows, 3))
-        numbers.update({c: pos[:, j] for j, c in enumerate(POSITIONS)})
+        numbers.update({c: pos[:, j] for j, c in enumerate(POSITION_COLUMNS)})
     kept: dict[str, list] = {c: [] for c in text_columns}
     done = 0
     for batch in batches:
@@ -74,14 +73,38 @@ def frame_from_batches(
 
 
 def parquet_files(path: Path, name_key: Callable[[str], object] = str) -> list[Path]:
-    """The Parquet file, or the folder's ``*.parquet`` files ordered by ``name_key`` of their names."""
+    """The Parquet file, or the folder's ``*.parquet`` files ordered by ``name_key`` of their names.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file or folder (text).
+    name_key : callable
+        Sort key of a file name (text), e.g. :func:`natural_key`.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The Parquet files in order.
+    """
     if path.is_dir():
         return sorted(path.glob("*.parquet"), key=lambda p: name_key(p.name))
     return [path]
 
 
 def is_parquet(path: str | Path) -> bool:
-    """A ``.parquet`` file, or a folder whose files include Parquet files and no other recordings."""
+    """A ``.parquet`` file, or a folder whose files include Parquet files and no other recordings.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file or folder (text).
+
+    Returns
+    -------
+    bool
+        True when it is read as Parquet.
+    """
     path = Path(path)
     if path.is_dir():
         names = [p.suffix.lower() for p in path.iterdir() if p.is_file() and not p.name.startswith(".")]
@@ -92,9 +115,31 @@ def is_parquet(path: str | Path) -> bool:
 def read_parquet(
     path: str | Path, columns: tuple[str, ...], name_key: Callable[[str], object] = str
 ) -> tuple[pd.DataFrame, Callable[[int], str]]:
-    """The recordings columns of a Parquet file or folder, and a function naming row r (0-based, of all
-    files in order) as ``"part-3.parquet, row 12"``. DataFormatError names the file when it cannot be
-    read or lacks a column."""
+    """The recordings columns of a Parquet file or folder, and a function naming row r.
+
+    Row r is 0-based, of all files in order, named as ``"part-3.parquet, row 12"``.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The Parquet file or folder (text).
+    columns : tuple of str
+        The columns to read (text).
+    name_key : callable
+        Sort key of the file names of a folder (text).
+
+    Returns
+    -------
+    frame : pandas.DataFrame
+        The columns read, files concatenated in order (t in s, positions in m).
+    place : callable
+        Row (0-based) to its file and row (text).
+
+    Raises
+    ------
+    DataFormatError
+        Naming the file when it cannot be read or lacks a column.
+    """
     import pyarrow as pa
     import pyarrow.parquet as pq
 
@@ -118,7 +163,7 @@ def read_parquet(
         handles.append(pf)
         sizes.append(pf.metadata.num_rows)
     offsets = np.cumsum([0, *sizes]).tolist()
-    ids = tuple(c for c in columns if c in ("participant", "trial"))
+    ids = tuple(c for c in columns if c in ID_COLUMNS)
     numbers = tuple(c for c in columns if c not in ids)
 
     def batches():

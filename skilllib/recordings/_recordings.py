@@ -52,14 +52,12 @@ from ._checks import (
     _check_rates,
     _check_units,
 )
+from ._columns import COLUMNS, ID_COLUMNS, POSITION_COLUMNS
 from ._csv import read_plain, read_table
 from ._errors import DataFormatError, quote
 from ._parquet import is_parquet, read_parquet, release_arrow_memory
 from ._runs import Runs
 
-COLUMNS = ("participant", "trial", "t", "x", "y", "z", "contact")
-ID_COLUMNS = ("participant", "trial")
-POSITION_COLUMNS = ("x", "y", "z")
 T_DECIMALS, POS_DECIMALS = 4, 5  #: writer's rounding: 0.1 ms and 0.01 mm
 #: Cells of the numeric columns read as missing (NaN), as pandas reads them by default.
 NA_TEXT = frozenset({"", "NA", "N/A", "n/a", "NaN", "nan", "-nan", "-NaN", "NULL", "null", "None", "#N/A"})
@@ -96,6 +94,18 @@ class Recordings:
     (empty, or what resampling onto the uniform grid bridged: ``"resampled: jitter up to 1.9 ms, 1
     dropped frame"``); ``fs``: sampling rate in Hz derived from the time stamps; ``source``: the file
     (or ``<DataFrame>``).
+
+    Attributes
+    ----------
+    frame : pandas.DataFrame
+        The samples: ``participant, trial`` (text), ``t`` (s), ``x, y, z`` (m), ``contact`` (0/1).
+    trials : pandas.DataFrame
+        One row per trial: ``participant, trial`` (text), ``n_samples`` (samples), ``first_line``,
+        ``status``, ``reason``, ``timing`` (text).
+    fs : float
+        The sampling rate derived from the time stamps (Hz).
+    source : str
+        The file read, or ``<DataFrame>`` (text).
     """
 
     frame: pd.DataFrame
@@ -153,14 +163,40 @@ class Recordings:
 
 
 def natural_key(label: Any) -> tuple:
-    """Sort key that orders ids as people do: digit runs by value (``P2`` < ``P10``, ``2`` < ``10``),
-    then the text itself, so that ``01`` and ``1`` keep a fixed order."""
+    """Sort key that orders ids and file names as people (and file managers) do.
+
+    Digit runs by value (``P2`` < ``P10``, ``2`` < ``10``), other runs ignoring case (``p2`` between
+    ``P1`` and ``P10``), then the text itself, so that ``01`` and ``1``, ``P1`` and ``p1`` keep a fixed
+    order. The one key of the package: the folder reader orders files, Parquet parts and tables their ids
+    with it.
+
+    Parameters
+    ----------
+    label : Any
+        An id or file name (text, or anything its ``str`` is taken of).
+
+    Returns
+    -------
+    tuple
+        The sort key.
+    """
     s = str(label)
-    return tuple((0, int(p), p) if p.isdigit() else (1, 0, p) for p in re.split(r"(\d+)", s) if p), s
+    return tuple((0, int(p), "") if p.isdigit() else (1, 0, p.casefold()) for p in re.split(r"(\d+)", s) if p), s
 
 
 def sort_ids(labels: Iterable[Any]) -> list:
-    """``labels`` sorted by :func:`natural_key`."""
+    """``labels`` sorted by :func:`natural_key`.
+
+    Parameters
+    ----------
+    labels : iterable
+        Ids or file names (text).
+
+    Returns
+    -------
+    list
+        The labels in natural order.
+    """
     return sorted(labels, key=natural_key)
 
 
@@ -259,14 +295,40 @@ def recordings_from_frame(
     place: Callable[[int], str] | None = None,
     rate: tuple[float, float] | None = None,
 ) -> Recordings:
-    """Validate a long table into :class:`Recordings`; see :func:`read_recordings`. ``lines``: the
-    physical file line of each row (as :func:`read_table` gives); ``places``: a text per row naming where
-    it came from (``"P01/3.c3d, frame 12"``, for tables read from several files); ``place``: the same as a
-    function of the row (:func:`skilllib.recordings.read_parquet`); else messages name 0-based rows.
-    ``rate``: ``(ref, dt)`` in s, the median of the trials' median intervals and the sampling interval of
-    a whole corpus this table is a part of (:mod:`skilllib.features`): trials are judged against them,
-    and the corpus-wide errors (mixed rates, units) are left to the caller; ``(nan, nan)``: no rate is
-    decided (fs NaN). The per-trial statistics are kept in ``_cache["stats"]``."""
+    """Validate a long table into :class:`Recordings`; see :func:`read_recordings`.
+
+    Messages name the physical file line (``lines``), a place text (``places``, ``place``), else the
+    0-based row. The per-trial statistics are kept in ``_cache["stats"]``.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The long table: ``participant, trial`` (text), ``t`` (s), ``x, y, z`` (m), ``contact`` (0/1).
+    source : str
+        The name of the table in messages (text).
+    lines : numpy.ndarray, range or None
+        The physical file line of each row (as :func:`read_table` gives; dimensionless), or None.
+    places : numpy.ndarray or None
+        A text per row naming where it came from (``"P01/3.c3d, frame 12"``, for tables read from
+        several files; text), or None.
+    place : callable or None
+        The same as a function of the 0-based row (:func:`skilllib.recordings.read_parquet`; text), or None.
+    rate : tuple of float or None
+        ``(ref, dt)`` (s): the median of the trials' median intervals and the sampling interval of a whole
+        corpus this table is a part of (:mod:`skilllib.features`); trials are judged against them, and the
+        corpus-wide errors (mixed rates, units) are left to the caller. ``(nan, nan)``: no rate is decided
+        (fs NaN). None: decided from this table.
+
+    Returns
+    -------
+    Recordings
+        The validated recordings (t in s, positions in m, fs in Hz).
+
+    Raises
+    ------
+    DataFormatError
+        For what makes the whole table unreadable, as :func:`read_recordings`.
+    """
     if not isinstance(df, pd.DataFrame):
         raise DataFormatError(f"{source}: expected a pandas DataFrame, got {type(df).__name__}")
     df = _check_columns(df, source)
@@ -400,18 +462,33 @@ def _positions(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
 
 
 def read_recordings(path: str | Path) -> Recordings:
-    """Read and validate a recordings CSV (format: module docstring; compressed files as pandas infers),
-    or a Parquet file or folder of Parquet files (:mod:`skilllib.recordings`). A plain CSV file (one record
-    per line, no blank line, not compressed) is read by pyarrow's CSV reader, any other by pandas' (same
-    result, tested; line numbers in messages count physical lines either way).
+    """Read and validate a recordings CSV, or a Parquet file or folder of Parquet files.
 
-    Raises :class:`DataFormatError` naming the file (and line, column) when the file is missing or
-    empty, a required column is missing, a cell is not a number, an id is empty, ``contact`` is not 0/1,
-    positions look like millimetres, time stamps like milliseconds or microseconds, or trials mix sampling
-    rates. Trial-level problems (time going backwards or repeated, a gap in the time stamps, NaN/inf
-    positions, too few samples, rows not contiguous, a trial sampled at another rate) mark that trial
-    ``invalid`` with a reason; contact and onset are checked by :func:`skilllib.features.trial_features`.
-    For C3D and TRC files, folders and other column names see :func:`skilllib.recordings.load_recordings`.
+    Format: module docstring (compressed CSV files as pandas infers); Parquet: :mod:`skilllib.recordings`.
+    A plain CSV file (one record per line, no blank line, not compressed) is read by pyarrow's CSV reader,
+    any other by pandas' (same result, tested; line numbers in messages count physical lines either way).
+
+    Trial-level problems (time going backwards or repeated, a gap in the time stamps, NaN/inf positions,
+    too few samples, rows not contiguous, a trial sampled at another rate) mark that trial ``invalid`` with
+    a reason; contact and onset are checked by :func:`skilllib.features.trial_features`. For C3D and TRC
+    files, folders and other column names see :func:`skilllib.recordings.load_recordings`.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The CSV file, Parquet file or folder of Parquet files (text).
+
+    Returns
+    -------
+    Recordings
+        The validated recordings (t in s, positions in m, fs in Hz).
+
+    Raises
+    ------
+    DataFormatError
+        Naming the file (and line, column) when the file is missing or empty, a required column is
+        missing, a cell is not a number, an id is empty, ``contact`` is not 0/1, positions look like
+        millimetres, time stamps like milliseconds or microseconds, or trials mix sampling rates.
     """
     path = Path(path)
     if is_parquet(path):
@@ -436,8 +513,20 @@ def _fmt(values: np.ndarray, decimals: int) -> list[str]:
 
 
 def format_recordings(data: pd.DataFrame | Recordings) -> str:
-    """The CSV text of ``data`` (rows in their order): ids as text, t to 0.1 ms, positions to 0.01 mm,
-    '\\n' line ends. Deterministic: the same table always gives the same text (no locale, no -0.00000).
+    r"""The CSV text of ``data`` (rows in their order).
+
+    Ids as text, t to 0.1 ms, positions to 0.01 mm, '\n' line ends. Deterministic: the same table always
+    gives the same text (no locale, no -0.00000).
+
+    Parameters
+    ----------
+    data : pandas.DataFrame or Recordings
+        The recordings: ids (text), ``t`` (s), ``x, y, z`` (m), ``contact`` (0/1).
+
+    Returns
+    -------
+    str
+        The CSV text (text; t in s, positions in m).
     """
     df = data.frame if isinstance(data, Recordings) else data
     missing = [c for c in COLUMNS if c not in df.columns]
@@ -458,7 +547,20 @@ def format_recordings(data: pd.DataFrame | Recordings) -> str:
 
 
 def write_recordings(data: pd.DataFrame | Recordings, path: str | Path) -> Path:
-    """Write ``data`` as a recordings CSV (:func:`format_recordings`, UTF-8); returns the path."""
+    """Write ``data`` as a recordings CSV (:func:`format_recordings`, UTF-8); returns the path.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame or Recordings
+        The recordings: ids (text), ``t`` (s), ``x, y, z`` (m), ``contact`` (0/1).
+    path : str or pathlib.Path
+        The file to write (text).
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
     path = Path(path)
     path.write_bytes(format_recordings(data).encode("utf-8"))
     return path

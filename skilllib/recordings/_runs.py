@@ -23,7 +23,15 @@ import numpy as np
 
 @dataclass(frozen=True)
 class Runs:
-    """Trial ``i`` is the rows ``start[i] .. start[i] + length[i] - 1`` of flat arrays (int64 arrays)."""
+    """Trial ``i`` is the rows ``start[i] .. start[i] + length[i] - 1`` of flat arrays (int64 arrays).
+
+    Attributes
+    ----------
+    start : numpy.ndarray of int64
+        First row of each trial (samples).
+    length : numpy.ndarray of int64
+        Number of rows of each trial (samples).
+    """
 
     start: np.ndarray
     length: np.ndarray
@@ -69,8 +77,22 @@ class Runs:
 
 
 def first_true(flags: np.ndarray, runs: Runs) -> np.ndarray:
-    """Per run, the index (within the run) of its first True value of the flat bool array ``flags``;
-    the run's length when it has none (also for an empty run). Runs may lie anywhere in ``flags``."""
+    """Per run, the index (within the run) of its first True value of the flat bool array ``flags``.
+
+    The run's length when it has none (also for an empty run). Runs may lie anywhere in ``flags``.
+
+    Parameters
+    ----------
+    flags : numpy.ndarray of bool
+        The flat flags (dimensionless).
+    runs : Runs
+        The runs (rows of ``flags``; samples).
+
+    Returns
+    -------
+    numpy.ndarray of int
+        Per run the index of its first True value within the run (samples).
+    """
     out = runs.length.copy()
     full = np.flatnonzero(runs.length > 0)
     if full.size == 0:

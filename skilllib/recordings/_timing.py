@@ -43,10 +43,23 @@ MAX_RATE_HZ = 100_000.0  #: the fastest rate a unit suggestion considers plausib
 
 
 def regular_mean_interval(t: np.ndarray) -> float:
-    """The typical interval (s) of time stamps ``t``: the mean of the intervals within +-:data:`TRIM` of a
-    centre, the centre moved to that mean until it stays (a flat-kernel mean shift from the median, at most
-    20 steps): the mode of the intervals, which jitter does not bias and dropped frames (2 x the interval)
-    do not reach. For regular time stamps every interval is in the window and this is their mean."""
+    """The typical interval of time stamps ``t``.
+
+    The mean of the intervals within +-:data:`TRIM` of a centre, the centre moved to that mean until it
+    stays (a flat-kernel mean shift from the median, at most 20 steps): the mode of the intervals, which
+    jitter does not bias and dropped frames (2 x the interval) do not reach. For regular time stamps every
+    interval is in the window and this is their mean.
+
+    Parameters
+    ----------
+    t : numpy.ndarray, shape (N,)
+        The time stamps (s), increasing.
+
+    Returns
+    -------
+    float
+        The typical interval (s).
+    """
     d = np.diff(np.asarray(t, dtype=float))
     c = float(np.median(d))
     for _ in range(20):
@@ -58,8 +71,21 @@ def regular_mean_interval(t: np.ndarray) -> float:
 
 
 def time_unit_advice(step: float) -> str:
-    """What a median time step too long for seconds (``step`` in the file's unit) says about the unit:
-    the unit (milliseconds or microseconds) whose rate is plausible, and the division that fixes it."""
+    """What a median time step too long for seconds says about the unit.
+
+    The unit (milliseconds or microseconds) whose rate is plausible, and the division that fixes it.
+
+    Parameters
+    ----------
+    step : float
+        The median time step between samples, in the file's unit (s if it were seconds; ms or us as
+        suspected).
+
+    Returns
+    -------
+    str
+        The advice for the message (text).
+    """
     head = (
         f"median time step {step:g} between samples: {1 / step:.3g} Hz if t were in seconds, below {MIN_RATE_HZ:g} Hz"
     )
@@ -74,12 +100,31 @@ def time_unit_advice(step: float) -> str:
 
 @dataclass(frozen=True)
 class Irregularity:
-    """How a trial's intervals deviate from the file's ``dt``: the largest relative deviation of an
-    interval from dt (``max_jitter``, e.g. 0.5 for an interval of 1.5 dt or 0.5 dt; a dropped frame
-    counts here), the number of dropped frames (``dropped``: sum over intervals of round(d / dt) - 1),
-    the longest interval (``max_interval`` in s, ``at``: index of the sample after it), against the
-    interval ``dt`` (s), and the jitter apart from dropped frames (``frame_jitter``: the largest
-    deviation of an interval from its nearest whole number of frames, at least one, relative to dt)."""
+    """How a trial's intervals deviate from the file's ``dt``.
+
+    The largest relative deviation of an interval from dt (``max_jitter``, e.g. 0.5 for an interval of
+    1.5 dt or 0.5 dt; a dropped frame counts here), the number of dropped frames (``dropped``: sum over
+    intervals of round(d / dt) - 1), the longest interval (``max_interval`` in s, ``at``: index of the
+    sample after it), against the interval ``dt`` (s), and the jitter apart from dropped frames
+    (``frame_jitter``: the largest deviation of an interval from its nearest whole number of frames, at
+    least one, relative to dt).
+
+    Attributes
+    ----------
+    max_jitter : float
+        Largest deviation of an interval from ``dt``, relative to ``dt`` (dimensionless).
+    dropped : int
+        Number of dropped frames (samples).
+    max_interval : float
+        The longest interval (s).
+    at : int
+        Index of the sample after the longest interval (samples).
+    dt : float
+        The interval judged against (s).
+    frame_jitter : float
+        Largest deviation of an interval from its nearest whole number of frames, relative to ``dt``
+        (dimensionless).
+    """
 
     max_jitter: float
     dropped: int
@@ -107,7 +152,20 @@ class Irregularity:
 
 
 def irregularity(t: np.ndarray, dt: float) -> Irregularity:
-    """The :class:`Irregularity` of time stamps ``t`` (s, increasing) against the interval ``dt`` (s)."""
+    """The :class:`Irregularity` of time stamps ``t`` against the interval ``dt``.
+
+    Parameters
+    ----------
+    t : numpy.ndarray, shape (N,)
+        The time stamps (s), increasing.
+    dt : float
+        The file's sampling interval (s).
+
+    Returns
+    -------
+    Irregularity
+        How the intervals of ``t`` deviate from ``dt`` (s and dimensionless ratios).
+    """
     d = np.diff(np.asarray(t, dtype=float))
     rel = np.abs(d / dt - 1)
     k = int(np.argmax(d))
@@ -122,12 +180,31 @@ def resample_uniform(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Resample one trial onto the uniform grid ``t[0] + k dt`` (k = 0 .. floor((t[-1] - t[0]) / dt)).
 
-    ``t`` (N,) s, increasing; ``pos`` (N, 3) m; ``contact`` (N,) bool. Positions: cubic interpolating
-    splines, one through the approach samples (before the first contact sample) and one through the
-    samples in contact (a part with fewer than 4 samples is interpolated linearly); a grid time between
-    the last approach sample and the first contact sample is extrapolated from the approach spline.
-    Contact: True from the first grid time at or after the first contact sample's time stamp.
-    Returns ``(t_grid, pos_grid, contact_grid)``.
+    Positions: cubic interpolating splines, one through the approach samples (before the first contact
+    sample) and one through the samples in contact (a part with fewer than 4 samples is interpolated
+    linearly); a grid time between the last approach sample and the first contact sample is extrapolated
+    from the approach spline. Contact: True from the first grid time at or after the first contact
+    sample's time stamp.
+
+    Parameters
+    ----------
+    t : numpy.ndarray, shape (N,)
+        The time stamps (s), increasing.
+    pos : numpy.ndarray, shape (N, 3)
+        The positions (m).
+    contact : numpy.ndarray of bool, shape (N,)
+        The contact flag of each sample (dimensionless).
+    dt : float
+        The grid's interval (s).
+
+    Returns
+    -------
+    t_grid : numpy.ndarray, shape (M,)
+        The uniform time stamps (s).
+    pos_grid : numpy.ndarray, shape (M, 3)
+        The resampled positions (m).
+    contact_grid : numpy.ndarray of bool, shape (M,)
+        The resampled contact flag (dimensionless).
     """
     t = np.asarray(t, dtype=float)
     pos = np.asarray(pos, dtype=float)

@@ -32,17 +32,14 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ._errors import DataFormatError, quote
+from ._errors import DataFormatError, check_file, quote
 from ._mapping import unit_factor
 
 HEADER_LINES = 5  #: PathFileType, header names, header values, marker names, X1/Y1/Z1
 
 
 def _lines(path: Path) -> list[str]:
-    if not path.exists():
-        raise DataFormatError(f"{path}: file not found")
-    if path.is_dir():
-        raise DataFormatError(f"{path}: is a directory, not a TRC file")
+    check_file(path, "TRC")
     try:
         text = path.read_bytes().decode("utf-8-sig")
     except UnicodeDecodeError:
@@ -69,11 +66,30 @@ def _header(lines: list[str], path: Path) -> dict[str, str]:
 def read_trc(path: str | Path, *, marker: str | None = None, units: str | None = None) -> pd.DataFrame:
     """One marker of a TRC file as one trial: columns ``t`` (s), ``x, y, z`` (m, the file's axes), ``contact`` (NaN).
 
-    Rules in the module docstring. Raises :class:`~skilllib.recordings.DataFormatError` (one line naming the
-    file and line) when the file is missing, is not a TRC file, lacks ``DataRate``, ``NumMarkers`` or
-    ``Units``, lists another number of markers than ``NumMarkers``, has several markers and no
-    ``marker`` or no marker ``marker`` (listing them), has an unknown unit, or has a cell that is not a
-    number in the chosen marker's or the time column.
+    Rules in the module docstring.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The TRC file (text).
+    marker : str or None
+        Name of the marker to read (text); None: the file's only marker.
+    units : str or None
+        Unit of the file's positions (text: ``"m"``, ``"cm"`` or ``"mm"``), overriding a missing or wrong
+        header; None: the file's own.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``t`` (s), ``x, y, z`` (m, the file's axes), ``contact`` (NaN).
+
+    Raises
+    ------
+    DataFormatError
+        One line naming the file and line, when the file is missing, is not a TRC file, lacks
+        ``DataRate``, ``NumMarkers`` or ``Units``, lists another number of markers than ``NumMarkers``, has
+        several markers and no ``marker`` or no marker ``marker`` (listing them), has an unknown unit, or
+        has a cell that is not a number in the chosen marker's or the time column.
     """
     path = Path(path)
     lines = _lines(path)
@@ -137,10 +153,26 @@ def read_trc(path: str | Path, *, marker: str | None = None, units: str | None =
 
 
 def write_trc(path: str | Path, markers: dict[str, np.ndarray], t: np.ndarray, *, units: str = "mm") -> Path:
-    """Write marker paths as a TRC file (the layout :func:`read_trc` reads, OpenSim's): ``markers`` name ->
-    (N, 3) positions in m, written in ``units`` (``mm``, ``cm`` or ``m``) to 0.001 of the unit; ``t`` (N,)
-    time stamps in s, uniform (DataRate is 1 / their mean interval). A NaN position is written as an
-    empty cell (a gap). Creates the folder. Returns the path."""
+    """Write marker paths as a TRC file (the layout :func:`read_trc` reads, OpenSim's).
+
+    A NaN position is written as an empty cell (a gap). Creates the folder.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file to write (text).
+    markers : dict of str to numpy.ndarray
+        Marker name (text) -> (N, 3) positions (m).
+    t : numpy.ndarray, shape (N,)
+        The time stamps (s), uniform (DataRate is 1 / their mean interval).
+    units : str
+        The unit the positions are written in (text: ``mm``, ``cm`` or ``m``), to 0.001 of the unit.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     factor = unit_factor(units, str(path))

@@ -3,7 +3,8 @@
 The arms and their limits (``_arms``: Simple6, UR5, Puma 560, Panda), their reach (``_reach``), inverse
 kinematics (``_ik``), the velocity transfer qdot = J(q)^-1 v (``_velocity``: :func:`transfer`), joint
 accelerations, jerks and torques (``_dynamics``), the executed motion (``_execution``) and the verdict
-against every limit with its time scaling (``_feasibility``: :func:`assess`).
+against every limit with its time scaling (``_feasibility``: :func:`assess`), and the checks the
+chapters print (``_checks``: joint limits, the tool velocity J qd, the next band frequency).
 """
 
 import lazy_loader as _lazy
@@ -20,12 +21,14 @@ __getattr__, __dir__, __all__ = _lazy.attach(
             "has_dynamics",
             "joint_origins",
             "PANDA_QD_LIMITS",
+            "PANDA_QDDD_LIMITS",
             "PUMA560_TAU_LIMITS",
             "qd_limits_vector",
             "ROBOT_NAMES",
-            "RobotSetup",
+            "Arm",
             "simple6",
         ],
+        "_checks": ["next_band_frequency", "tool_velocity_error", "within_joint_limits"],
         "_dynamics": [
             "derivative",
             "jacobian_dot",
@@ -35,7 +38,7 @@ __getattr__, __dir__, __all__ = _lazy.attach(
             "LIMIT_NAMES",
         ],
         "_execution": ["ACTUATOR_BANDWIDTH_HZ", "CONTROL_RATE_HZ", "execute"],
-        "_feasibility": ["assess", "assess_one", "Assessment", "limits_text", "resolve_limits", "transfer_block"],
+        "_feasibility": ["assess", "assess_one", "Assessment", "limits_text", "transfer_block"],
         "_ik": ["IK_CHAIN", "IK_RESTARTS", "IKAnswer", "pose_residual", "solve_ik"],
         "_reach": ["joint_axes", "reach_shell", "REACH_TOL_M", "shoulder_point"],
         "_velocity": [

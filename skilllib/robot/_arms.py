@@ -56,6 +56,8 @@ Joint acceleration limits (rad/s^2) and joint torque limits (N m), :func:`dynami
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
@@ -98,12 +100,84 @@ PANDA_Q0_RAD: tuple[float, ...] = (0.0, -0.3, 0.0, -2.2, 0.0, 2.0, np.pi / 4)
 ROBOT_NAMES: tuple[str, ...] = ("simple6", "ur5", "puma560", "panda")
 
 
-class RobotSetup(NamedTuple):
-    """An arm, its start pose ``q0`` (rad) and its joint velocity limits ``qd_limits`` (rad/s)."""
+Limits = float | Sequence[float] | np.ndarray
 
+
+@dataclass(frozen=True, eq=False)
+class Arm:
+    """A robot arm as the transfer uses it: the model, its start pose and every joint limit checked.
+
+    Made by :func:`get_robot` (the book's arms, with the user's overrides); :meth:`with_limits` gives the
+    same arm with other limits.
+
+    Attributes
+    ----------
+    name : str
+        The name :func:`get_robot` knows it by (``simple6``, ``ur5``, ``puma560``, ``panda``).
+    robot : roboticstoolbox.Robot
+        The kinematic (and, where the model has them, dynamic) model.
+    q0 : numpy.ndarray
+        Start pose, (n,) rad: its tool point receives the movement's start, its orientation is kept.
+    qd_limits : numpy.ndarray
+        Joint velocity limits, (n,) rad/s.
+    qdd_limits : numpy.ndarray or None
+        Joint acceleration limits, (n,) rad/s^2; None where the arm has none.
+    tau_limits : numpy.ndarray or None
+        Joint torque limits, (n,) N m; None without dynamic parameters.
+    """
+
+    name: str
     robot: rtb.Robot
     q0: np.ndarray
     qd_limits: np.ndarray
+    qdd_limits: np.ndarray | None
+    tau_limits: np.ndarray | None
+
+    @property
+    def n(self) -> int:
+        """The number of joints."""
+        return int(self.robot.n)
+
+    @property
+    def dynamic_limits(self) -> DynamicLimits:
+        """The acceleration (rad/s^2) and torque (N m) limits, as :func:`skilllib.robot.assess` takes them."""
+        return DynamicLimits(self.qdd_limits, self.tau_limits)
+
+    def with_limits(
+        self, qd_max: Limits | None = None, qdd_max: Limits | None = None, tau_max: Limits | None = None
+    ) -> Arm:
+        """The same arm with the user's limits where given (one value for every joint, or one per joint).
+
+        Parameters
+        ----------
+        qd_max : float or sequence of float, optional
+            Joint velocity limits, rad/s.
+        qdd_max : float or sequence of float, optional
+            Joint acceleration limits, rad/s^2.
+        tau_max : float or sequence of float, optional
+            Joint torque limits, N m; only for an arm with dynamic parameters.
+
+        Returns
+        -------
+        Arm
+            A new arm; the limits not given are this arm's.
+
+        Raises
+        ------
+        ValueError
+            A limit of the wrong length, not positive or not finite (the message names the option and its
+            unit), or torque limits for an arm without dynamic parameters.
+        """
+        n = self.n
+        qd = self.qd_limits if qd_max is None else limits_vector(qd_max, n, "qd_max", "rad/s")
+        qdd = self.qdd_limits if qdd_max is None else limits_vector(qdd_max, n, "qdd_max", "rad/s^2")
+        if tau_max is not None and not has_dynamics(self.robot):
+            raise ValueError(
+                f"tau_max: {self.robot.name} has no dynamic parameters (a kinematic model), so no torques "
+                f"to limit; choose an arm with dynamics (ur5, puma560, panda)"
+            )
+        tau = self.tau_limits if tau_max is None else limits_vector(tau_max, n, "tau_max", "N m")
+        return replace(self, qd_limits=qd, qdd_limits=qdd, tau_limits=tau)
 
 
 def simple6() -> rtb.DHRobot:
@@ -112,6 +186,11 @@ def simple6() -> rtb.DHRobot:
     Standard DH (Corke 2017, sec. 7.1), L1 = L2 = 1 m, revolute joints, no joint limits in the
     original model (roboticstoolbox stores the default +-pi rad); named poses ``qz`` (zero) and
     ``qn`` (the paper's default dexterous pose, :data:`DEFAULT_POSE_DEG`).
+
+    Returns
+    -------
+    roboticstoolbox.DHRobot
+        The kinematic model (link lengths in m, joint angles in rad), without dynamic parameters.
     """
     import roboticstoolbox as rtb
 
@@ -130,26 +209,66 @@ def simple6() -> rtb.DHRobot:
 
 
 def default_pose() -> np.ndarray:
-    """The paper's default dexterous pose of Simple6 as a (6,) array in rad."""
+    """The paper's default dexterous pose of Simple6 as a (6,) array in rad.
+
+    Returns
+    -------
+    numpy.ndarray, shape (6,)
+        The joint angles q1..q6 of :data:`DEFAULT_POSE_DEG` (rad).
+    """
     return np.deg2rad(np.asarray(DEFAULT_POSE_DEG, dtype=float))
 
 
 def qd_limits_vector(qd_limits: float | np.ndarray | list[float] | tuple[float, ...], n: int) -> np.ndarray:
     """Joint velocity limits (rad/s) as an (n,) array; a scalar applies to every joint.
 
-    Raises ``ValueError`` when the length is not 1 or ``n`` or a limit is not positive and finite.
+    Parameters
+    ----------
+    qd_limits : float or array_like of float
+        One joint velocity limit for every joint, or one per joint (rad/s).
+    n : int
+        The number of joints (dimensionless).
+
+    Returns
+    -------
+    numpy.ndarray, shape (n,)
+        The joint velocity limits (rad/s).
+
+    Raises
+    ------
+    ValueError
+        When the length is not 1 or ``n`` or a limit is not positive and finite.
     """
     return limits_vector(qd_limits, n, "qd_limits", "rad/s")
 
 
-def get_robot(name: str) -> RobotSetup:
-    """An arm by name, with its start pose ``q0`` (rad) and velocity limits (rad/s).
+def get_robot(
+    name: str, *, qd_max: Limits | None = None, qdd_max: Limits | None = None, tau_max: Limits | None = None
+) -> Arm:
+    """An arm by name, with its start pose and every limit the book checks (or the user's).
 
     Names (case-insensitive): ``"simple6"`` (the paper's arm at :data:`DEFAULT_POSE_DEG`),
     ``"ur5"`` and ``"puma560"`` (roboticstoolbox's DH models with their joint limits ``qlim``),
     ``"panda"`` (the 7-DOF DH model of the Franka Emika Panda: redundant, so the transfer uses the
     pseudo-inverse). The limits and poses are justified in the module docstring.
-    Returns a :class:`RobotSetup` ``(robot, q0, qd_limits)``; raises ``ValueError`` for other names.
+
+    Parameters
+    ----------
+    name : str
+        One of :data:`ROBOT_NAMES`, any case.
+    qd_max, qdd_max, tau_max : float or sequence of float, optional
+        The user's joint velocity (rad/s), acceleration (rad/s^2) and torque (N m) limits, one value for
+        every joint or one per joint, in place of the book's (:meth:`Arm.with_limits`).
+
+    Returns
+    -------
+    Arm
+        The arm, its start pose ``q0`` (rad) and its limits.
+
+    Raises
+    ------
+    ValueError
+        An unknown name, or a bad limit (:meth:`Arm.with_limits`).
     """
     import roboticstoolbox as rtb
 
@@ -172,7 +291,9 @@ def get_robot(name: str) -> RobotSetup:
         lim = np.asarray(PANDA_QD_LIMITS, dtype=float)
     else:
         raise ValueError(f"unknown robot {name!r}; valid names: {', '.join(ROBOT_NAMES)}")
-    return RobotSetup(robot, np.asarray(q0, dtype=float), lim)
+    book = dynamic_limits(key)
+    arm = Arm(key, robot, np.asarray(q0, dtype=float), lim, book.qdd_limits, book.tau_limits)
+    return arm.with_limits(qd_max, qdd_max, tau_max)
 
 
 class DynamicLimits(NamedTuple):
@@ -185,12 +306,39 @@ class DynamicLimits(NamedTuple):
 
 def has_dynamics(robot: rtb.Robot) -> bool:
     """True when the model carries dynamic parameters (some link has a mass), so that inverse dynamics
-    (``rne``) gives torques; Simple6 has none."""
+    (``rne``) gives torques; Simple6 has none.
+
+    Parameters
+    ----------
+    robot : roboticstoolbox.Robot
+        The arm's model; only its links' masses are read.
+
+    Returns
+    -------
+    bool
+        True when some link has a positive mass (dimensionless).
+    """
     return any(float(getattr(link, "m", 0.0) or 0.0) > 0 for link in robot.links)
 
 
 def dynamic_limits(name: str) -> DynamicLimits:
-    """The book's acceleration and torque limits of an arm by name (as :func:`get_robot`)."""
+    """The book's acceleration and torque limits of an arm by name (as :func:`get_robot`).
+
+    Parameters
+    ----------
+    name : str
+        One of :data:`ROBOT_NAMES`, any case (text).
+
+    Returns
+    -------
+    DynamicLimits
+        ``qdd_limits`` (n,) rad/s^2 and ``tau_limits`` (n,) N m, each None where the arm has none.
+
+    Raises
+    ------
+    ValueError
+        An unknown name.
+    """
     key = str(name).strip().lower()
     table = {
         "simple6": (GENERIC_QDD_LIMIT, None),
@@ -228,6 +376,20 @@ def joint_origins(robot: rtb.DHRobot, q: np.ndarray) -> tuple[np.ndarray, np.nda
 
     Joint j turns about the z axis of DH frame j-1 through its origin (Corke 2017, sec. 7.1.1),
     so both come from ``fkine_all``. Used to label the joints in the figures.
+
+    Parameters
+    ----------
+    robot : roboticstoolbox.DHRobot
+        A standard-DH arm.
+    q : numpy.ndarray, shape (n,)
+        The joint angles (rad).
+
+    Returns
+    -------
+    positions : numpy.ndarray, shape (n, 3)
+        The joints' positions in the base frame (m).
+    axes : numpy.ndarray, shape (n, 3)
+        The joints' unit axes in the base frame (dimensionless).
     """
     frames = robot.fkine_all(np.asarray(q, dtype=float))
     pos = np.array([frames[j].t for j in range(robot.n)])

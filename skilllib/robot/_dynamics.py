@@ -41,6 +41,7 @@ import roboticstoolbox as rtb
 from scipy.optimize import brentq
 
 from ..features import velocity as sg_derivative
+from ..prototypes import json_value
 from ._arms import has_dynamics, limits_vector
 from ._velocity import QD_LIMIT_RTOL, TransferResult
 
@@ -55,7 +56,21 @@ def derivative(x: np.ndarray, t: np.ndarray) -> np.ndarray:
     """d/dt of samples x (N, ...) at times t (N,) s: the Savitzky-Golay derivative of
     :func:`skilllib.features.velocity` over its fixed 2/60 s span when t is uniform (to 1e-6 relative),
     else ``numpy.gradient`` with second-order edges. Rows with NaN (samples not computed) stay NaN, and each
-    run of computed rows is differentiated on its own (a single computed row between gaps: NaN)."""
+    run of computed rows is differentiated on its own (a single computed row between gaps: NaN).
+
+    Parameters
+    ----------
+    x : numpy.ndarray, shape (N, ...)
+        The samples, in any unit u (m, m/s, rad, rad/s, rad/s^2, ...); NaN rows for samples not computed.
+    t : numpy.ndarray, shape (N,)
+        Their time stamps, increasing (s).
+
+    Returns
+    -------
+    numpy.ndarray
+        dx/dt, shape of ``x``, in u per s (e.g. m/s^2 from m/s, rad/s^3 from rad/s^2); NaN where ``x`` is
+        NaN or a run has a single row.
+    """
     x = np.asarray(x, dtype=float)
     t = np.asarray(t, dtype=float)
     out = np.full_like(x, np.nan)
@@ -76,7 +91,25 @@ def _derivative_run(x: np.ndarray, t: np.ndarray) -> np.ndarray:
 
 def jacobian_dot(ets: rtb.ETS, q: np.ndarray, qd: np.ndarray, J: np.ndarray | None = None) -> np.ndarray:
     """Time derivative of the world-frame Jacobian (6, n) at q (rad) moving at qd (rad/s): the Hessian
-    ``ETS.hessian0`` contracted with qd (Haviland & Corke 2023, part II)."""
+    ``ETS.hessian0`` contracted with qd (Haviland & Corke 2023, part II).
+
+    Parameters
+    ----------
+    ets : roboticstoolbox.ETS
+        The arm's elementary transform sequence.
+    q : numpy.ndarray, shape (n,)
+        The joint angles (rad).
+    qd : numpy.ndarray, shape (n,)
+        The joint velocities (rad/s).
+    J : numpy.ndarray, shape (6, n), optional
+        The world-frame Jacobian at ``q`` if already computed (m per rad in its linear rows,
+        dimensionless in its angular rows); computed when None.
+
+    Returns
+    -------
+    numpy.ndarray, shape (6, n)
+        Jdot: linear rows in m/s per rad, angular rows in 1/s (rad/s per rad).
+    """
     H = ets.hessian0(np.asarray(q, dtype=float), J0=J)
     return np.einsum("ijk,i->jk", H, np.asarray(qd, dtype=float))
 
@@ -84,7 +117,26 @@ def jacobian_dot(ets: rtb.ETS, q: np.ndarray, qd: np.ndarray, J: np.ndarray | No
 def joint_accelerations(ets: rtb.ETS, q: np.ndarray, qd: np.ndarray, v: np.ndarray, a: np.ndarray) -> np.ndarray:
     """qdd (N, n) rad/s^2 of joint samples q (rad), qd (rad/s) that realise spatial velocities v (N, 6)
     with spatial accelerations a (N, 6) (m/s, rad/s and their derivatives): the exact derivative of the
-    (minimum-norm) solution qd = J^+ v, see the module docstring. NaN rows stay NaN."""
+    (minimum-norm) solution qd = J^+ v, see the module docstring. NaN rows stay NaN.
+
+    Parameters
+    ----------
+    ets : roboticstoolbox.ETS
+        The arm's elementary transform sequence.
+    q : numpy.ndarray, shape (N, n)
+        The joint angles (rad).
+    qd : numpy.ndarray, shape (N, n)
+        The joint velocities (rad/s).
+    v : numpy.ndarray, shape (N, 6)
+        The spatial velocities in the base frame: linear (m/s), angular (rad/s).
+    a : numpy.ndarray, shape (N, 6)
+        Their time derivatives: linear (m/s^2), angular (rad/s^2).
+
+    Returns
+    -------
+    numpy.ndarray, shape (N, n)
+        The joint accelerations qdd (rad/s^2); NaN rows where q or qd is NaN.
+    """
     N, n = q.shape
     qdd = np.full((N, n), np.nan)
     for k in range(N):
@@ -108,7 +160,37 @@ class JointDynamics:
     ``transfer`` the :class:`~skilllib.robot.TransferResult`; ``qdd`` (N, n) rad/s^2; ``qddd`` (N, n)
     rad/s^3; ``tau`` (N, n) N m or None (no dynamic parameters); ``qdd_limits`` (n,) rad/s^2 or None;
     ``tau_limits`` (n,) N m or None; ``robot`` the roboticstoolbox arm (for torques at other speeds).
-    NaN rows are samples the transfer could not compute."""
+    NaN rows are samples the transfer could not compute.
+
+    Attributes
+    ----------
+    transfer : TransferResult
+        The transferred trajectory: q (rad), qd (rad/s) per sample.
+    qdd : numpy.ndarray, shape (N, n)
+        The joint accelerations (rad/s^2).
+    qddd : numpy.ndarray, shape (N, n)
+        The joint jerks (rad/s^3).
+    tau : numpy.ndarray, shape (N, n), or None
+        The joint torques (N m); None without dynamic parameters.
+    qdd_limits : numpy.ndarray, shape (n,), or None
+        The joint acceleration limits (rad/s^2); None for no such limit.
+    tau_limits : numpy.ndarray, shape (n,), or None
+        The joint torque limits (N m); None for no such limit.
+    robot : roboticstoolbox.Robot
+        The arm, for the torques at other speeds.
+    ok : numpy.ndarray of bool, shape (N,)
+        Samples with q, qd and qdd computed (dimensionless).
+    peak_abs_qdd, peak_abs_qddd : numpy.ndarray, shape (n,)
+        Peak absolute joint acceleration (rad/s^2) and jerk (rad/s^3) per joint.
+    peak_abs_tau : numpy.ndarray, shape (n,), or None
+        Peak absolute joint torque per joint (N m).
+    time_scale : float
+        The smallest uniform stretch s >= 1 after which every limit holds (dimensionless).
+    binding_limit : str or None
+        The limit that sets ``time_scale`` (text).
+    feasible : bool
+        Nothing flagged and every limit holds as recorded (dimensionless).
+    """
 
     transfer: TransferResult
     qdd: np.ndarray
@@ -256,19 +338,12 @@ class JointDynamics:
         """The per-prototype entries of results.json this module adds (plain floats and lists):
         ``time_scale`` and ``feasible`` cover every limit checked (velocity, acceleration, torque);
         ``time_scales`` gives the stretch each limit asks for alone."""
-
-        def plain(x: float | None) -> float | None:
-            return None if x is None or not np.isfinite(x) else float(x)
-
-        def vec(x: np.ndarray | None) -> list[float | None] | None:
-            return None if x is None else [plain(v) for v in x]
-
         return {
-            "peak_abs_qdd": vec(self.peak_abs_qdd),
-            "peak_abs_qddd": vec(self.peak_abs_qddd),
-            "peak_abs_tau": vec(self.peak_abs_tau),
-            "time_scales": {k: plain(v) for k, v in self.time_scales().items()},
-            "time_scale": plain(self.time_scale),
+            "peak_abs_qdd": json_value(self.peak_abs_qdd),
+            "peak_abs_qddd": json_value(self.peak_abs_qddd),
+            "peak_abs_tau": json_value(self.peak_abs_tau),
+            "time_scales": json_value(self.time_scales()),
+            "time_scale": json_value(self.time_scale),
             "binding_limit": self.binding_limit,
             "feasible": bool(self.feasible),
         }
@@ -285,7 +360,32 @@ def joint_dynamics(
 
     ``qdd_limits`` rad/s^2 and ``tau_limits`` N m: scalar, per joint, or None for no such limit (torque
     limits need dynamic parameters: ValueError otherwise). The hand's velocity in the base frame is
-    J qd (the transfer made it so); its acceleration is its derivative over time (:func:`derivative`)."""
+    J qd (the transfer made it so); its acceleration is its derivative over time (:func:`derivative`).
+
+    Parameters
+    ----------
+    robot : roboticstoolbox.Robot
+        The arm the trajectory was transferred to.
+    result : TransferResult
+        The transfer: t (s), q (rad), qd (rad/s), v_base (m/s).
+    qdd_limits : float or numpy.ndarray, shape (n,), optional
+        Joint acceleration limits (rad/s^2); None for none.
+    tau_limits : float or numpy.ndarray, shape (n,), optional
+        Joint torque limits (N m); None for none.
+    rotation : numpy.ndarray, shape (3, 3), optional
+        Not used: the base-frame hand velocity comes from the transfer (dimensionless).
+
+    Returns
+    -------
+    JointDynamics
+        qdd (rad/s^2), qddd (rad/s^3), tau (N m, or None without dynamic parameters) and the limits.
+
+    Raises
+    ------
+    ValueError
+        A limit of the wrong length, not positive or not finite, or torque limits on an arm without
+        dynamic parameters.
+    """
     ets = robot.ets()
     n = ets.n
     qdd_lim = None if qdd_limits is None else limits_vector(qdd_limits, n, "qdd_limits", "rad/s^2")

@@ -121,7 +121,43 @@ def execute(
     controller rate (Hz); ``bandwidth_hz`` the first-order lag's bandwidth (Hz; None for none);
     ``sparc_params`` fc (Hz), amp_th, padlevel of :func:`skilllib.smoothness.sparc`; ``qdd`` (N, n)
     rad/s^2 the samples' accelerations (of the recorded timing) for the Hermite command. ValueError when a
-    sample of ``result`` was not computed (IK failure): such a command cannot be executed."""
+    sample of ``result`` was not computed (IK failure): such a command cannot be executed.
+
+    Parameters
+    ----------
+    robot : roboticstoolbox.Robot
+        The arm the trajectory was transferred to.
+    result : TransferResult
+        The transfer: t (s), q (rad), qd (rad/s), x_base (m) per sample, every sample computed.
+    qd_limits : float or numpy.ndarray, shape (n,), optional
+        Joint velocity limits (rad/s); the result's own by default.
+    qdd_limits : float or numpy.ndarray, shape (n,), optional
+        Joint acceleration limits (rad/s^2); None for no acceleration limit.
+    time_scale : float
+        The uniform time stretch s > 0 of the command, normally >= 1 (dimensionless).
+    rate_hz : float
+        The controller rate (Hz).
+    bandwidth_hz : float or None
+        The bandwidth of the first-order actuator lag (Hz); None for no lag.
+    sparc_params : mapping of str to float
+        ``fc`` (Hz), ``amp_th`` (dimensionless) and ``padlevel`` (dimensionless) of
+        :func:`skilllib.smoothness.sparc`; missing keys take :data:`~skilllib.smoothness.SPARC_PARAMS`.
+    qdd : numpy.ndarray, shape (N, n), optional
+        The samples' joint accelerations at the recorded timing (rad/s^2), for the Hermite command; None
+        for a linearly interpolated command.
+
+    Returns
+    -------
+    Execution
+        The simulated execution: at the controller ticks t (s), q (rad), qd (rad/s), tool x (m) and v (m/s);
+        at the command's samples the speed (m/s) and tracking error (m); PV (m/s) and SPARC (dimensionless).
+
+    Raises
+    ------
+    ValueError
+        A sample of ``result`` without joint angles, a ``time_scale`` or ``rate_hz`` not positive, a
+        ``bandwidth_hz`` not positive, or a bad limit.
+    """
     ets = robot.ets()
     n = ets.n
     if not (np.all(np.isfinite(result.q)) and np.all(np.isfinite(result.qd))):

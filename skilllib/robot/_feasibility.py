@@ -7,14 +7,14 @@ For each prototype's :class:`~skilllib.robot.TransferResult` on one arm, :func:`
 * the simulated execution of the joint velocity commands as recorded and after that time scaling,
   with the executed PV, SPARC and tracking error (:mod:`skilllib.robot`).
 
-:func:`transfer_block` turns the assessments into the ``transfer`` block of results.json (README):
+:func:`transfer_block` turns the assessments into the ``transfer`` block of results.json (docs/results.md):
 the entries of :func:`skilllib.robot.transfer_summary` with the dynamics' and executions' entries, plus
 ``qdd_limits``, ``tau_limits`` and ``execution`` (controller rate, actuator bandwidth). In each
 prototype's entry ``feasible`` and ``time_scale`` cover every limit checked (velocity, acceleration,
 torque); the velocity limits alone, the paper's question, are ``feasible_velocity`` and
 ``time_scales.velocity``.
 The limits an arm gets by default, and their sources, are those of :func:`skilllib.robot.dynamic_limits`;
-:func:`resolve_limits` applies the user's.
+:func:`skilllib.robot.get_robot` applies the user's (an :class:`~skilllib.robot.Arm` carries them all).
 """
 
 from __future__ import annotations
@@ -26,8 +26,9 @@ from typing import Any
 import numpy as np
 import roboticstoolbox as rtb
 
+from ..prototypes import json_value
 from ..smoothness import SPARC_PARAMS
-from ._arms import DynamicLimits, dynamic_limits, has_dynamics, limits_vector
+from ._arms import DynamicLimits
 from ._dynamics import JointDynamics, joint_dynamics
 from ._execution import ACTUATOR_BANDWIDTH_HZ, CONTROL_RATE_HZ, Execution, execute
 from ._velocity import TransferResult, transfer_summary
@@ -37,7 +38,21 @@ from ._velocity import TransferResult, transfer_summary
 class Assessment:
     """One prototype on one arm: its :class:`~skilllib.robot.JointDynamics`, its execution as recorded
     (``executed``) and after the time scale of every limit (``executed_scaled``), each None with the reason
-    in ``note`` when it cannot be simulated (samples the transfer could not compute; no finite time scale)."""
+    in ``note`` when it cannot be simulated (samples the transfer could not compute; no finite time scale).
+
+    Attributes
+    ----------
+    dynamics : JointDynamics
+        Joint accelerations (rad/s^2), jerks (rad/s^3), torques (N m) and the time scale of every limit.
+    executed : Execution or None
+        The simulated execution as recorded: PV (m/s), SPARC (dimensionless), tracking error (m).
+    executed_scaled : Execution or None
+        The simulated execution after the time scale of every limit (same units).
+    note : str or None
+        Why an execution is None (text).
+    transfer : TransferResult
+        The transfer result assessed, ``dynamics.transfer``: q (rad), qd (rad/s).
+    """
 
     dynamics: JointDynamics
     executed: Execution | None
@@ -58,36 +73,11 @@ class Assessment:
         entry["feasible_velocity"] = entry.pop("feasible")
         del entry["time_scale"]  # the velocity limits' stretch: time_scales.velocity
         entry.update(self.dynamics.summary())
-        entry["executed"] = None if self.executed is None else _executed(self.executed)
-        entry["executed_time_scaled"] = None if self.executed_scaled is None else _executed(self.executed_scaled)
-        return entry
-
-
-def _executed(e: Execution) -> dict[str, float]:
-    out = e.summary()
-    return {k: (float(v) if np.isfinite(v) else None) for k, v in out.items()}
-
-
-def resolve_limits(
-    name: str,
-    robot: rtb.Robot,
-    qdd_max: float | Sequence[float] | None = None,
-    tau_max: float | Sequence[float] | None = None,
-) -> DynamicLimits:
-    """The acceleration (rad/s^2) and torque (N m) limits of the arm ``name``: the book's
-    (:func:`skilllib.robot.dynamic_limits`) unless the user gives ``qdd_max`` / ``tau_max`` (one value for
-    every joint or one per joint). ValueError for a bad value, or torque limits on an arm without dynamic
-    parameters."""
-    book = dynamic_limits(name)
-    n = robot.n
-    qdd = book.qdd_limits if qdd_max is None else limits_vector(qdd_max, n, "qdd_max", "rad/s^2")
-    if tau_max is not None and not has_dynamics(robot):
-        raise ValueError(
-            f"tau_max: {robot.name} has no dynamic parameters (a kinematic model), so no torques "
-            f"to limit; choose an arm with dynamics (ur5, puma560, panda)"
+        entry["executed"] = None if self.executed is None else json_value(self.executed.summary())
+        entry["executed_time_scaled"] = (
+            None if self.executed_scaled is None else json_value(self.executed_scaled.summary())
         )
-    tau = book.tau_limits if tau_max is None else limits_vector(tau_max, n, "tau_max", "N m")
-    return DynamicLimits(qdd, tau)
+        return entry
 
 
 def assess_one(
@@ -99,7 +89,35 @@ def assess_one(
     rate_hz: float = CONTROL_RATE_HZ,
     bandwidth_hz: float | None = ACTUATOR_BANDWIDTH_HZ,
 ) -> Assessment:
-    """The :class:`Assessment` of one transfer result under ``limits``."""
+    """The :class:`Assessment` of one transfer result under ``limits``.
+
+    Parameters
+    ----------
+    robot : roboticstoolbox.Robot
+        The arm the trajectory was transferred to.
+    result : TransferResult
+        The transfer: t (s), q (rad), qd (rad/s) per sample, and the velocity limits (rad/s).
+    limits : DynamicLimits
+        Joint acceleration limits ``qdd_limits`` (rad/s^2) and torque limits ``tau_limits`` (N m), each
+        None for none.
+    sparc_params : mapping of str to float
+        ``fc`` (Hz), ``amp_th`` and ``padlevel`` (dimensionless) of the executed SPARC.
+    rate_hz : float
+        The simulated controller rate (Hz).
+    bandwidth_hz : float or None
+        The bandwidth of the simulated actuator lag (Hz); None for no lag.
+
+    Returns
+    -------
+    Assessment
+        The dynamics, the execution as recorded and after time scaling, and a note where one is missing.
+
+    Raises
+    ------
+    ValueError
+        A limit of the wrong length, not positive or not finite, or torque limits on an arm without
+        dynamic parameters.
+    """
     dyn = joint_dynamics(robot, result, limits.qdd_limits, limits.tau_limits)
     kw = dict(
         qdd_limits=limits.qdd_limits, rate_hz=rate_hz, bandwidth_hz=bandwidth_hz, sparc_params=sparc_params, qdd=dyn.qdd
@@ -122,7 +140,34 @@ def assess(
     rate_hz: float = CONTROL_RATE_HZ,
     bandwidth_hz: float | None = ACTUATOR_BANDWIDTH_HZ,
 ) -> list[Assessment]:
-    """:func:`assess_one` for each result (same arm, same limits)."""
+    """:func:`assess_one` for each result (same arm, same limits).
+
+    Parameters
+    ----------
+    robot : roboticstoolbox.Robot
+        The arm the trajectories were transferred to.
+    results : sequence of TransferResult
+        The transfer results: t (s), q (rad), qd (rad/s) per sample.
+    limits : DynamicLimits
+        Joint acceleration limits ``qdd_limits`` (rad/s^2) and torque limits ``tau_limits`` (N m), each
+        None for none.
+    sparc_params : mapping of str to float
+        ``fc`` (Hz), ``amp_th`` and ``padlevel`` (dimensionless) of the executed SPARC.
+    rate_hz : float
+        The simulated controller rate (Hz).
+    bandwidth_hz : float or None
+        The bandwidth of the simulated actuator lag (Hz); None for no lag.
+
+    Returns
+    -------
+    list of Assessment
+        One per result, in the given order.
+
+    Raises
+    ------
+    ValueError
+        As :func:`assess_one`.
+    """
     return [
         assess_one(robot, r, limits, sparc_params=sparc_params, rate_hz=rate_hz, bandwidth_hz=bandwidth_hz)
         for r in results
@@ -132,13 +177,29 @@ def assess(
 def transfer_block(assessments: Sequence[Assessment]) -> dict[str, Any]:
     """The ``transfer`` block of results.json: ``robot``, ``q0_deg``, ``qd_limits`` (rad/s), ``qdd_limits``
     (rad/s^2 or null), ``tau_limits`` (N m or null), ``execution`` {``control_rate_hz``,
-    ``actuator_bandwidth_hz``} and ``prototypes`` (:meth:`Assessment.summary`, in the given order)."""
+    ``actuator_bandwidth_hz``} and ``prototypes`` (:meth:`Assessment.summary`, in the given order).
+
+    Parameters
+    ----------
+    assessments : sequence of Assessment
+        At least one, all on the same arm from the same start pose (rad).
+
+    Returns
+    -------
+    dict
+        The block, JSON-ready: limits in rad/s, rad/s^2 and N m, rates in Hz.
+
+    Raises
+    ------
+    ValueError
+        When ``assessments`` is empty or mixes arms or start poses.
+    """
     if not assessments:
         raise ValueError("transfer_block needs at least one Assessment")
     block = transfer_summary([a.transfer for a in assessments])
     first = assessments[0]
-    block["qdd_limits"] = _list(first.dynamics.qdd_limits)
-    block["tau_limits"] = _list(first.dynamics.tau_limits)
+    block["qdd_limits"] = json_value(first.dynamics.qdd_limits)
+    block["tau_limits"] = json_value(first.dynamics.tau_limits)
     e = next((a.executed for a in assessments if a.executed is not None), None)
     block["execution"] = {
         "control_rate_hz": CONTROL_RATE_HZ if e is None else e.rate_hz,
@@ -150,7 +211,18 @@ def transfer_block(assessments: Sequence[Assessment]) -> dict[str, Any]:
 
 def limits_text(dyn: JointDynamics) -> str:
     """The limits of an assessment for a summary line: 'joint velocity limits 3.14 rad/s; acceleration
-    5 rad/s^2' (one value when every joint has the same, else one per joint; absent limits left out)."""
+    5 rad/s^2' (one value when every joint has the same, else one per joint; absent limits left out).
+
+    Parameters
+    ----------
+    dyn : JointDynamics
+        The dynamics whose limits are told: velocity (rad/s), acceleration (rad/s^2), torque (N m).
+
+    Returns
+    -------
+    str
+        The limits with their units, joined by "; " (text).
+    """
 
     def one(what: str, lim: np.ndarray | None, unit: str) -> str:
         if lim is None:
@@ -164,7 +236,3 @@ def limits_text(dyn: JointDynamics) -> str:
         one("torque", dyn.tau_limits, "N m"),
     ]
     return "; ".join(p for p in parts if p)
-
-
-def _list(x: np.ndarray | None) -> list[float] | None:
-    return None if x is None else [float(v) for v in x]

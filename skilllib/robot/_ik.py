@@ -46,7 +46,23 @@ class IKAnswer(NamedTuple):
     """What :func:`solve_ik` found: ``q`` (rad; the best attempt when not ``ok``), ``residual_m`` (its
     position residual, m), ``ok``, ``solver`` (the name in :data:`IK_CHAIN` that succeeded, or ""),
     and of the best attempt its orientation residual ``orientation_rad`` and the joints (1-based) outside
-    their limits ``outside``."""
+    their limits ``outside``.
+
+    Attributes
+    ----------
+    q : numpy.ndarray, shape (n,)
+        The joint angles found, or the best attempt's (rad).
+    residual_m : float
+        Their position residual (m).
+    ok : bool
+        True when the pose was accepted (dimensionless).
+    solver : str
+        The name in :data:`IK_CHAIN` of the search that succeeded, or "" (text).
+    orientation_rad : float
+        The orientation residual, the angle of the relative rotation (rad).
+    outside : tuple of int
+        The joints (1-based) outside their limits (dimensionless).
+    """
 
     q: np.ndarray
     residual_m: float
@@ -65,7 +81,24 @@ class IKAnswer(NamedTuple):
 
 def pose_residual(ets: rtb.ETS, q: np.ndarray, target: np.ndarray) -> tuple[float, float]:
     """Position (m) and orientation (rad, angle of the relative rotation) residual of the tool pose at
-    ``q`` against the 4x4 ``target``."""
+    ``q`` against the 4x4 ``target``.
+
+    Parameters
+    ----------
+    ets : roboticstoolbox.ETS
+        The arm's elementary transform sequence.
+    q : numpy.ndarray, shape (n,)
+        The joint angles (rad).
+    target : numpy.ndarray, shape (4, 4)
+        The target tool pose, a homogeneous transform in the base frame (translation in m).
+
+    Returns
+    -------
+    position : float
+        The distance of the tool point from the target's (m).
+    orientation : float
+        The angle of the rotation from the target's orientation to the tool's (rad).
+    """
     T = ets.eval(q)
     dp = float(np.linalg.norm(T[:3, 3] - target[:3, 3]))
     c = (np.trace(target[:3, :3].T @ T[:3, :3]) - 1.0) / 2.0
@@ -87,7 +120,30 @@ def solve_ik(
 
     ``k`` seeds the random restarts (reproducible); ``restarts`` is their number per restarting search
     (0: only the seeded search). Returns an :class:`IKAnswer`; when nothing is accepted, the attempt with
-    the smallest position residual."""
+    the smallest position residual.
+
+    Parameters
+    ----------
+    ets : roboticstoolbox.ETS
+        The arm's elementary transform sequence, with its joint limits ``qlim`` (rad).
+    target : numpy.ndarray, shape (4, 4)
+        The target tool pose, a homogeneous transform in the base frame (translation in m).
+    seed_q : numpy.ndarray, shape (n,)
+        The seed, normally the previous sample's solution (rad).
+    k : int
+        The seed of the random restarts, normally the sample index (samples).
+    tol : float
+        The largest accepted position residual (m) and orientation residual (rad).
+    joint_tol : float
+        The tolerance of the joint-limit check (rad).
+    restarts : int
+        Random restarts per restarting search; 0 for only the seeded search (dimensionless).
+
+    Returns
+    -------
+    IKAnswer
+        The accepted pose (rad) with its residuals (m, rad), or the best attempt with ``ok`` False.
+    """
     qlim = np.asarray(ets.qlim, dtype=float)
     best = IKAnswer(np.asarray(seed_q, dtype=float), np.inf, False, "")
     for name, method, kwargs, restarting in IK_CHAIN:

@@ -72,7 +72,27 @@ def joint_axes(ets: rtb.ETS, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Unit directions (n, 3) and points (n, 3) m of the joint axes at pose ``q`` (rad), base frame.
 
     From the world-frame Jacobian (Corke 2017, sec. 8.1): column j is (w_j x (p - o_j), w_j) for a
-    revolute joint, so o = p + w_j x v_j is the point of axis j nearest the tool point p."""
+    revolute joint, so o = p + w_j x v_j is the point of axis j nearest the tool point p.
+
+    Parameters
+    ----------
+    ets : roboticstoolbox.ETS
+        The arm's elementary transform sequence, revolute joints only.
+    q : numpy.ndarray, shape (n,)
+        The joint angles (rad).
+
+    Returns
+    -------
+    directions : numpy.ndarray, shape (n, 3)
+        The unit directions of the joint axes (dimensionless).
+    points : numpy.ndarray, shape (n, 3)
+        The point of each axis nearest the tool point (m).
+
+    Raises
+    ------
+    ValueError
+        When a joint is not revolute (an angular Jacobian column not of unit length).
+    """
     J = ets.jacob0(np.asarray(q, dtype=float))
     p = ets.eval(np.asarray(q, dtype=float))[:3, 3]
     w = J[3:].T
@@ -84,7 +104,25 @@ def joint_axes(ets: rtb.ETS, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def shoulder_point(ets: rtb.ETS, q: np.ndarray) -> np.ndarray:
     """The point (3,) m where the axes of joints 1 and 2 meet (the midpoint of their common
     perpendicular); ValueError when they are parallel or more than 1e-9 m apart (the shell's distance
-    would then depend on q2)."""
+    would then depend on q2).
+
+    Parameters
+    ----------
+    ets : roboticstoolbox.ETS
+        The arm's elementary transform sequence, revolute joints only.
+    q : numpy.ndarray, shape (n,)
+        The joint angles (rad).
+
+    Returns
+    -------
+    numpy.ndarray, shape (3,)
+        The shoulder point in the base frame (m).
+
+    Raises
+    ------
+    ValueError
+        When the axes of joints 1 and 2 are parallel or do not meet, or a joint is not revolute.
+    """
     w, o = joint_axes(ets, q)
     (w1, w2), (o1, o2) = w[:2], o[:2]
     n = np.cross(w1, w2)
@@ -103,7 +141,19 @@ def reach_shell(robot: rtb.Robot) -> ReachShell:
     """The reach shell of ``robot`` (cached per arm: name, kinematics and joint limits).
 
     An arm whose first two axes do not meet gets a looser shell around its base origin: 0 to
-    ``robot.reach`` (roboticstoolbox's sum of the link lengths, an upper bound) plus the tool offset."""
+    ``robot.reach`` (roboticstoolbox's sum of the link lengths, an upper bound) plus the tool offset.
+
+    Parameters
+    ----------
+    robot : roboticstoolbox.Robot
+        The arm, with its joint limits ``qlim`` (rad).
+
+    Returns
+    -------
+    ReachShell
+        The shoulder point (m, base frame) and the smallest and largest distance ``r_min``, ``r_max`` (m)
+        of the tool point from it.
+    """
     ets = robot.ets()
     qlim = np.asarray(ets.qlim, dtype=float)
     key = (robot.name, str(ets), qlim.tobytes())

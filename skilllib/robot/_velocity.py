@@ -44,8 +44,9 @@ from typing import Any
 import numpy as np
 import roboticstoolbox as rtb
 
+from ..prototypes import json_value
 from ..smoothness import DEFAULT_FC, sparc
-from ._arms import get_robot, qd_limits_vector
+from ._arms import Arm, get_robot, qd_limits_vector
 from ._ik import IK_RESTARTS, solve_ik
 from ._reach import reach_shell
 
@@ -85,6 +86,47 @@ class TransferResult:
     reach shell), ``ik_failed`` (inside it, no solver succeeded), ``ik_branch_jump``, ``ill_conditioned``
     or ``singular``), qd_limits (n,) rad/s, v_base (N, 3) the commanded tool velocities in the base
     frame (m/s).
+
+    Attributes
+    ----------
+    robot : str
+        The arm's name (text).
+    q0 : numpy.ndarray, shape (n,)
+        The start pose (rad).
+    qd_limits : numpy.ndarray, shape (n,)
+        The joint velocity limits (rad/s).
+    t : numpy.ndarray, shape (N,)
+        The time stamps (s).
+    x_base : numpy.ndarray, shape (N, 3)
+        The target tool positions in the base frame (m).
+    q : numpy.ndarray, shape (N, n)
+        The joint angles (rad); NaN at unreachable and IK-failed samples.
+    qd : numpy.ndarray, shape (N, n)
+        The joint velocities (rad/s); NaN where ``q`` is.
+    det_j : numpy.ndarray, shape (N,)
+        det J, or Yoshikawa's manipulability sqrt(det(J J')) for n != 6 (m^3: J's three linear rows are
+        in m per rad, its three angular rows dimensionless).
+    cond_j : numpy.ndarray, shape (N,)
+        The 2-norm condition number of J (dimensionless, for lengths in m).
+    ik_residual_m : numpy.ndarray, shape (N,)
+        The IK position residual ``|p(q) - p*|`` (m).
+    flags : list of dict
+        One ``{"sample": int, "reason": str}`` per problem (samples, text).
+    cluster : int or None
+        The prototype's cluster label (dimensionless), None for a trajectory not from a cluster.
+    v_base : numpy.ndarray, shape (N, 3), or None
+        The commanded tool velocities in the base frame (m/s).
+    peak_abs_qd : numpy.ndarray, shape (n,)
+        Peak ``|qd_j|`` per joint over the computed samples (rad/s).
+    min_abs_det_j, max_cond_j : float
+        The smallest ``|det J|`` and the largest cond J over the computed samples (as ``det_j``,
+        ``cond_j``; dimensionless for cond J).
+    ik_max_residual_m : float
+        The largest IK position residual (m).
+    time_scale : float
+        The smallest uniform time stretch s >= 1 bringing every joint within its limit (dimensionless).
+    within_limits, feasible : bool
+        Every joint within its velocity limit; that and nothing flagged (dimensionless).
     """
 
     robot: str
@@ -144,12 +186,12 @@ class TransferResult:
         """The per-prototype entry of results.json (plain floats/lists; None for undefined)."""
         return {
             "cluster": None if self.cluster is None else int(self.cluster),
-            "peak_abs_qd": [_plain(v) for v in self.peak_abs_qd],
-            "min_abs_det_j": _plain(self.min_abs_det_j),
-            "max_cond_j": _plain(self.max_cond_j),
-            "ik_max_residual_m": _plain(self.ik_max_residual_m),
+            "peak_abs_qd": json_value(self.peak_abs_qd),
+            "min_abs_det_j": json_value(self.min_abs_det_j),
+            "max_cond_j": json_value(self.max_cond_j),
+            "ik_max_residual_m": json_value(self.ik_max_residual_m),
             "feasible": bool(self.feasible),
-            "time_scale": _plain(self.time_scale),
+            "time_scale": json_value(self.time_scale),
             "flags": [{"sample": int(f["sample"]), "reason": str(f["reason"])} for f in self.flags],
         }
 
@@ -160,17 +202,29 @@ def _nan_reduce(fn: Any, x: np.ndarray) -> float:
     return float(fn(x)) if x.size else float("nan")
 
 
-def _plain(x: float) -> float | None:
-    x = float(x)
-    return x if np.isfinite(x) else None
-
-
 def time_scale_factor(peak_abs_qd: np.ndarray, qd_limits: float | np.ndarray) -> float:
     """Smallest uniform time-scaling factor s >= 1 that brings every joint within its limit.
 
     A uniform stretch t -> s t of the same path divides every joint velocity by s, so
     s = max(1, max_j peak|qd_j| / limit_j). ``peak_abs_qd`` rad/s (n,), ``qd_limits`` rad/s
     (scalar or (n,)). NaN peaks (joints never computed) are ignored; all NaN gives NaN.
+
+    Parameters
+    ----------
+    peak_abs_qd : numpy.ndarray, shape (n,)
+        Peak absolute joint velocity per joint (rad/s); NaN for a joint never computed.
+    qd_limits : float or numpy.ndarray, shape (n,)
+        Joint velocity limits, one for every joint or one per joint (rad/s).
+
+    Returns
+    -------
+    float
+        The time-scaling factor s >= 1 (dimensionless); NaN when every peak is NaN.
+
+    Raises
+    ------
+    ValueError
+        When ``qd_limits`` has the wrong length or a limit is not positive and finite.
     """
     peak = np.asarray(peak_abs_qd, dtype=float)
     lim = qd_limits_vector(qd_limits, peak.size)
@@ -191,6 +245,27 @@ def apply_time_scale(t: np.ndarray, velocity: np.ndarray, s: float) -> tuple[np.
     amplitude threshold: the spectrum is only rescaled in frequency (by 1/s) and amplitude, both
     normalised away by SPARC. With a fixed cut-off fc (Hz) and a profile truncated at contact (spectrum
     still above the threshold at fc), SPARC changes unless fc is scaled by 1/s too.
+
+    Parameters
+    ----------
+    t : numpy.ndarray, shape (N,)
+        The time stamps (s).
+    velocity : numpy.ndarray, shape (N,) or (N, 3)
+        A speed profile or velocities (m/s), or joint velocities (rad/s).
+    s : float
+        The time stretch, positive (dimensionless).
+
+    Returns
+    -------
+    t_scaled : numpy.ndarray, shape (N,)
+        The stretched time stamps t0 + s (t - t0) (s).
+    velocity_scaled : numpy.ndarray
+        ``velocity / s``, same shape and unit as ``velocity`` (m/s or rad/s).
+
+    Raises
+    ------
+    ValueError
+        When ``s`` is not positive and finite, or ``velocity`` and ``t`` differ in their number of samples.
     """
     t = np.asarray(t, dtype=float)
     v = np.asarray(velocity, dtype=float)
@@ -211,6 +286,28 @@ def time_scaled_features(speed: np.ndarray, fs: float, s: float, fc: float = DEF
     ``pv_resampled``, ``sparc_resampled_fc_scaled`` (cut-off fc / s) and ``sparc_resampled_fixed_fc``
     (cut-off fc, the pipeline's measurement). A fixed fc on the stretched samples themselves is not
     offered: their Nyquist frequency fs / (2 s) falls below fc once s > fs / (2 fc).
+
+    Parameters
+    ----------
+    speed : numpy.ndarray, shape (N,)
+        The speed profile (m/s).
+    fs : float
+        Its sampling rate (Hz).
+    s : float
+        The time stretch, positive (dimensionless).
+    fc : float
+        The SPARC maximum cut-off frequency of the unstretched profile (Hz).
+
+    Returns
+    -------
+    dict of str to float
+        ``pv`` and ``pv_resampled`` (m/s), ``sparc_fc_scaled``, ``sparc_resampled_fc_scaled`` and
+        ``sparc_resampled_fixed_fc`` (dimensionless), ``n_resampled`` (samples).
+
+    Raises
+    ------
+    ValueError
+        When ``s`` is not positive and finite, or SPARC rejects the profile or its parameters.
     """
     v = np.asarray(speed, dtype=float)
     t_s, v_s = apply_time_scale(np.arange(v.size) / fs, v, s)  # the stretched samples, s / fs apart
@@ -236,6 +333,31 @@ def minimum_jerk_descent(
     m/s. Sampled at ``fs`` Hz from t = 0 while s <= ``fraction`` A: the movement ends at contact
     with non-zero speed, like the experiment's trials. Returns t (s), positions (N, 3) m and
     velocities (N, 3) m/s in the experiment frame (moving along -y, starting at the origin).
+
+    Parameters
+    ----------
+    amplitude : float
+        The full minimum-jerk amplitude A (m).
+    peak_speed : float
+        The peak speed of the full movement (m/s).
+    fs : float
+        The sampling rate (Hz).
+    fraction : float
+        The fraction of A at which contact ends the movement, in (0, 1] (dimensionless).
+
+    Returns
+    -------
+    t : numpy.ndarray, shape (N,)
+        The time stamps from 0 (s).
+    positions : numpy.ndarray, shape (N, 3)
+        The positions in the experiment frame (m).
+    velocities : numpy.ndarray, shape (N, 3)
+        The velocities in the experiment frame (m/s).
+
+    Raises
+    ------
+    ValueError
+        When ``amplitude``, ``peak_speed`` or ``fs`` is not positive, or ``fraction`` not in (0, 1].
     """
     if amplitude <= 0 or peak_speed <= 0 or fs <= 0 or not 0 < fraction <= 1:
         raise ValueError("amplitude (m), peak_speed (m/s), fs (Hz) must be positive and 0 < fraction <= 1")
@@ -258,6 +380,29 @@ def to_base_frame(
 
     ``p_base = start + R (p - p[0])`` puts the movement's start at ``start`` (m, base frame);
     ``v_base = R v``.
+
+    Parameters
+    ----------
+    positions : numpy.ndarray, shape (N, 3)
+        Positions in the experiment frame (m).
+    velocities : numpy.ndarray, shape (N, 3)
+        Velocities in the experiment frame (m/s).
+    start : numpy.ndarray, shape (3,)
+        Where the movement's start goes, in the base frame (m).
+    rotation : numpy.ndarray, shape (3, 3)
+        The experiment -> base rotation R, a proper rotation (dimensionless); :data:`EXP_TO_BASE` by default.
+
+    Returns
+    -------
+    positions_base : numpy.ndarray, shape (N, 3)
+        The positions in the base frame (m).
+    velocities_base : numpy.ndarray, shape (N, 3)
+        The velocities in the base frame (m/s).
+
+    Raises
+    ------
+    ValueError
+        When ``rotation`` is not a proper 3x3 rotation matrix.
     """
     R = np.asarray(rotation, dtype=float)
     if R.shape != (3, 3) or not np.allclose(R @ R.T, np.eye(3), atol=1e-9) or np.linalg.det(R) < 0:
@@ -279,10 +424,10 @@ def _check_inputs(t: np.ndarray, pos: np.ndarray, vel: np.ndarray) -> None:
 
 
 def transfer(
-    robot: rtb.Robot | str,
-    t: np.ndarray,
-    positions: np.ndarray,
-    velocities: np.ndarray,
+    robot: Arm | rtb.Robot | str,
+    t: Any,
+    positions: np.ndarray | None = None,
+    velocities: np.ndarray | None = None,
     q0: np.ndarray | None = None,
     qd_limits: float | np.ndarray | None = None,
     rotation: np.ndarray = EXP_TO_BASE,
@@ -291,9 +436,12 @@ def transfer(
 ) -> TransferResult:
     """Joint angles and velocities that make ``robot`` execute a hand trajectory (paper Sec. 4).
 
-    ``robot`` is a roboticstoolbox arm or a name for :func:`skilllib.robot.get_robot` (which then
-    also supplies ``q0`` and ``qd_limits`` unless given). ``t`` (N,) s; ``positions`` (N, 3) m and
-    ``velocities`` (N, 3) m/s in the experiment frame (x mediolateral, y up, z anteroposterior).
+    ``transfer(arm, segment)``: ``arm`` an :class:`~skilllib.robot.Arm` (or a name for
+    :func:`skilllib.robot.get_robot`; either supplies ``q0`` and ``qd_limits`` unless given), ``segment`` a
+    :class:`~skilllib.features.Segment` (its ``time`` from the onset, ``pos`` and ``vel``). The same with
+    arrays: ``transfer(robot, t, positions, velocities, q0=..., qd_limits=...)`` with a roboticstoolbox arm,
+    ``t`` (N,) s, ``positions`` (N, 3) m and ``velocities`` (N, 3) m/s in the experiment frame
+    (x mediolateral, y up, z anteroposterior).
     ``q0`` (n,) rad: the start pose, whose tool point receives the movement's start and whose
     tool orientation is kept; it must lie within the joint limits ``qlim``. ``qd_limits`` rad/s, scalar or
     (n,); required for an arm given as
@@ -301,12 +449,53 @@ def transfer(
     checked), J = jacob0(q), det J / cond J, qd = J^-1 v with v = (R v_exp, 0, 0, 0)
     (``np.linalg.solve``; least-squares minimum-norm solution J^+ v when n != 6). Corke 2017,
     sec. 7.2.2 (numerical IK) and 8.2 (resolved-rate motion).
+
+    Parameters
+    ----------
+    robot : Arm, roboticstoolbox.Robot or str
+        The arm: an :class:`Arm`, a name for :func:`get_robot`, or a roboticstoolbox model with at
+        least 6 joints.
+    t : numpy.ndarray, shape (N,), or Segment
+        The time stamps, strictly increasing (s); or a :class:`~skilllib.features.Segment` (its time
+        from the onset in s, positions in m, velocities in m/s), then without ``positions`` and
+        ``velocities``.
+    positions : numpy.ndarray, shape (N, 3), optional
+        Hand positions in the experiment frame (m).
+    velocities : numpy.ndarray, shape (N, 3), optional
+        Hand velocities in the experiment frame (m/s).
+    q0 : numpy.ndarray, shape (n,), optional
+        The start pose, within the joint limits (rad); the arm's by default.
+    qd_limits : float or numpy.ndarray, shape (n,), optional
+        Joint velocity limits (rad/s); the arm's by default.
+    rotation : numpy.ndarray, shape (3, 3)
+        The experiment -> base rotation (dimensionless); :data:`EXP_TO_BASE` by default.
+    cond_threshold : float
+        cond J above which a sample is flagged ``ill_conditioned`` (dimensionless).
+    cluster : int, optional
+        The prototype's cluster label, copied into the result (dimensionless).
+
+    Returns
+    -------
+    TransferResult
+        Per sample: q (rad), qd (rad/s), det J, cond J (dimensionless), IK residual (m) and the flags.
+
+    Raises
+    ------
+    ValueError
+        No trajectory, ``q0`` or ``qd_limits`` missing for an arm given as an object, an arm with fewer
+        than 6 joints, ``q0`` of the wrong length or outside the joint limits, bad velocity limits, or
+        time stamps, positions and velocities of wrong shapes, not finite or not strictly increasing.
     """
+    if positions is None and velocities is None and hasattr(t, "pos") and hasattr(t, "vel"):
+        t, positions, velocities = t.time, t.pos, t.vel  # a Segment
+    if positions is None or velocities is None:
+        raise ValueError("transfer needs a Segment, or time stamps with positions and velocities")
     if isinstance(robot, str):
-        setup = get_robot(robot)
-        robot = setup.robot
-        q0 = setup.q0 if q0 is None else q0
-        qd_limits = setup.qd_limits if qd_limits is None else qd_limits
+        robot = get_robot(robot)
+    if isinstance(robot, Arm):
+        q0 = robot.q0 if q0 is None else q0
+        qd_limits = robot.qd_limits if qd_limits is None else qd_limits
+        robot = robot.robot
     if q0 is None or qd_limits is None:
         raise ValueError("q0 (rad) and qd_limits (rad/s) are required when robot is not given by name")
     ets = robot.ets()
@@ -404,6 +593,21 @@ def transfer_summary(results: list[TransferResult]) -> dict[str, Any]:
 
     Keys: ``robot``, ``q0_deg`` (deg, rounded to 1e-9), ``qd_limits`` (rad/s) and ``prototypes`` (one
     :meth:`TransferResult.summary` per result, in the given order).
+
+    Parameters
+    ----------
+    results : list of TransferResult
+        At least one result, all on the same arm from the same start pose (joint angles in rad).
+
+    Returns
+    -------
+    dict
+        The block: ``robot`` (text), ``q0_deg`` (deg), ``qd_limits`` (rad/s), ``prototypes``.
+
+    Raises
+    ------
+    ValueError
+        When ``results`` is empty or mixes arms or start poses.
     """
     if not results:
         raise ValueError("transfer_summary needs at least one TransferResult")

@@ -2,7 +2,9 @@
 
 :func:`sparc` (one profile), :func:`sparc_many` (many at once, batch-invariant), :func:`sparc_bands`
 (with how each band ended), :func:`sparc_spectrum` (the spectrum behind it), :func:`ldlj`; the
-minimum-jerk profile the chapters and the cohort use (:func:`minimum_jerk_speed`). The numerical core
+minimum-jerk profile the chapters and the cohort use (:func:`minimum_jerk_speed`); generated
+profiles and measurements of the SPARC chapters (private ``_profiles``: :func:`minimum_jerk_submovements`,
+:func:`cut_at_contact`, :func:`noisy_copies`, ...). The numerical core
 (zero-padded real FFT, the adaptive band, the arc length) is the private ``_spectral``.
 """
 
@@ -23,10 +25,21 @@ __getattr__, __dir__, __all__ = _lazy.attach(
             "nfft",
             "sparc",
             "sparc_bands",
+            "SparcBands",
             "sparc_many",
             "SPARC_PARAMS",
             "sparc_spectrum",
             "SparcSpectrum",
         ],
+        "_profiles": [
+            "cut_at_contact",
+            "minimum_jerk_submovements",
+            "noisy_copies",
+            "sparc_squared_integral",
+            "sparc_squared_sum",
+            "speed_dip",
+            "stable_from",
+        ],
+        "_spectral": ["single_threaded"],
     },
 )

@@ -239,7 +239,7 @@ def test_soft_max_is_identity_below_the_knee_and_bounded_and_monotone_above(v):
 @given(seed=st.integers(0, 2**32 - 1))
 def test_any_seed_gives_valid_segmentable_trials(seed):
     c = cohort.generate_cohort(seed, SMALL)
-    f = trial_features(c.frame)
+    f = trial_features(c.recordings)
     assert len(f) == SMALL.n_participants * SMALL.n_trials
     assert (f.status != "invalid").all(), f[f.status == "invalid"].reason.tolist()
 

@@ -197,7 +197,7 @@ def test_every_trial_is_kept_with_status_and_reason():
     df.loc[df.index[(df.participant == 1) & (df.trial == 1)][-3:], "contact"] = 1  # ints here: a DataFrame
     bad = frame_of({(2, 1): approach()})
     bad.loc[5, "x"] = np.nan  # data-level invalid
-    f = trial_features(pd.concat([df, bad], ignore_index=True))
+    f = trial_features(recordings_from_frame(pd.concat([df, bad], ignore_index=True)))
     bad_row = len(df) + 5
     assert list(f.columns) == list(FEATURE_COLUMNS)
     assert f[["participant", "trial"]].apply(tuple, axis=1).tolist() == [
@@ -222,13 +222,13 @@ def test_window_edges_are_inclusive_and_the_next_float_out_is_excluded():
     """A contact speed exactly on an edge is selected, the window one float narrower excludes it
     (catches ``<=``/``>=`` for ``<``/``>`` in the window test)."""
     df = frame_of({(1, 1): approach()})
-    v = trial_features(df).contact_speed[0]
+    v = trial_features(recordings_from_frame(df)).contact_speed[0]
     lo, hi = CONTACT_WINDOW
-    assert trial_features(df, window=(v, hi)).status[0] == "selected"
-    assert trial_features(df, window=(lo, v)).status[0] == "selected"
-    out = trial_features(df, window=(np.nextafter(v, np.inf), hi))
+    assert trial_features(recordings_from_frame(df), window=(v, hi)).status[0] == "selected"
+    assert trial_features(recordings_from_frame(df), window=(lo, v)).status[0] == "selected"
+    out = trial_features(recordings_from_frame(df), window=(np.nextafter(v, np.inf), hi))
     assert out.status[0] == "excluded" and out.reason[0].startswith(f"contact speed {v:.3f} m/s below")
-    out = trial_features(df, window=(lo, np.nextafter(v, -np.inf)))
+    out = trial_features(recordings_from_frame(df), window=(lo, np.nextafter(v, -np.inf)))
     assert out.status[0] == "excluded" and out.reason[0].startswith(f"contact speed {v:.3f} m/s above")
 
 
@@ -247,10 +247,10 @@ def test_default_window_is_contact_window(edge, inside):
     is selected and 1e-6 outside excluded: trial_features selects with the constant (positions scaled
     about the start scale the speed)."""
     t, pos, c = approach()
-    v = trial_features(frame_of({(1, 1): (t, pos, c)})).contact_speed[0]
+    v = trial_features(recordings_from_frame(frame_of({(1, 1): (t, pos, c)}))).contact_speed[0]
     inward = 1e-6 if edge == 0 else -1e-6
     target = CONTACT_WINDOW[edge] * (1 + (inward if inside else -inward))
-    f = trial_features(frame_of({(1, 1): (t, pos[0] + (pos - pos[0]) * (target / v), c)}))
+    f = trial_features(recordings_from_frame(frame_of({(1, 1): (t, pos[0] + (pos - pos[0]) * (target / v), c)})))
     assert f.contact_speed[0] == pytest.approx(target, rel=1e-9)
     assert f.status[0] == ("selected" if inside else "excluded")
 
@@ -281,7 +281,7 @@ def test_features_match_an_independent_computation():
 
 def test_peak_speed_of_a_minimum_jerk_approach():
     """Cut at 95 % of its amplitude, a 0.15 m / 0.5 s minimum-jerk drop peaks at 1.875 D / T."""
-    f = trial_features(frame_of({(1, 1): approach(amp=0.15, dur=0.5, surface=0.1425)})).iloc[0]
+    f = trial_features(recordings_from_frame(frame_of({(1, 1): approach(amp=0.15, dur=0.5, surface=0.1425)}))).iloc[0]
     assert f.pv == pytest.approx(1.875 * 0.15 / 0.5, rel=0.01)
 
 
@@ -295,7 +295,7 @@ def test_segment_of_an_invalid_or_unknown_trial_raises():
 
 def test_summaries_count_every_trial():
     trials = {(p, tr): approach(amp=0.13 + 0.02 * tr) for p in (1, 2) for tr in range(1, 5)}
-    f = trial_features(frame_of(trials))
+    f = trial_features(recordings_from_frame(frame_of(trials)))
     counts = status_counts(f)
     assert counts.loc["all", "total"] == 8 and counts.loc["1", "total"] == 4
     summ = participant_summary(f)
@@ -316,8 +316,8 @@ def test_features_invariant_to_translation_rotation_and_time_origin(shift, angle
     time origin (only t_onset / t_contact move with it)."""
     t, pos, c = approach(amp=amp, dur=dur)
     rot = np.array([[np.cos(angle), 0, -np.sin(angle)], [0, 1, 0], [np.sin(angle), 0, np.cos(angle)]])
-    a = trial_features(frame_of({(1, 1): (t, pos, c)})).iloc[0]
-    b = trial_features(frame_of({(1, 1): (t + t0, pos @ rot.T + np.array(shift), c)})).iloc[0]
+    a = trial_features(recordings_from_frame(frame_of({(1, 1): (t, pos, c)}))).iloc[0]
+    b = trial_features(recordings_from_frame(frame_of({(1, 1): (t + t0, pos @ rot.T + np.array(shift), c)}))).iloc[0]
     assert a.status == b.status
     for col in ["pv", "contact_speed", "duration", "sparc", "ldlj"]:
         assert b[col] == pytest.approx(a[col], rel=1e-6, abs=1e-9), col
@@ -345,7 +345,7 @@ def test_min_segment_samples_at_both_sides_of_the_edge(n):
     onset = 9
     contact = np.arange(len(t)) >= onset + n
     seg = segment_arrays(t, pos, contact, FS)
-    f = trial_features(frame_of({(1, 1): (t, pos, contact)})).iloc[0]
+    f = trial_features(recordings_from_frame(frame_of({(1, 1): (t, pos, contact)}))).iloc[0]
     if n < MIN_SEGMENT_SAMPLES:
         reason = f"too short: {n} samples from onset to contact (need at least {MIN_SEGMENT_SAMPLES})"
         assert seg == reason and (f.status, f.reason) == ("invalid", reason)
@@ -381,7 +381,7 @@ def test_onset_speed_with_the_real_derivative(inside):
     a = ONSET_SPEED * (1 + (1e-6 if inside else -1e-6)) * 2 / FS  # ... after a first step of a
     pos[10:, 1] -= a  # central difference at sample 9: a * FS / 2
     contact = np.arange(len(t)) >= 25
-    f = trial_features(frame_of({(1, 1): (t, pos, contact)})).iloc[0]
+    f = trial_features(recordings_from_frame(frame_of({(1, 1): (t, pos, contact)}))).iloc[0]
     assert f.t_onset == t[9 if inside else 10]
 
 
@@ -406,6 +406,6 @@ def test_contact_from_the_first_or_second_sample(first_contact, reason):
 def test_tables_order_ids_naturally_and_keep_them_as_text():
     """'P2' before 'P10', '2' before '10'; '01' and '1' two participants (status_counts, participant_summary)."""
     trials = {(p, "1"): approach() for p in ("P10", "P2", "10", "2", "01", "1")}
-    f = trial_features(frame_of(trials))
+    f = trial_features(recordings_from_frame(frame_of(trials)))
     assert status_counts(f).index.tolist() == ["01", "1", "2", "10", "P2", "P10", "all"]
     assert participant_summary(f).index.tolist() == ["01", "1", "2", "10", "P2", "P10"]

@@ -113,7 +113,7 @@ def test_rest_speed_is_the_noise_floor(noisy):
     """White position noise of SD s gives a per-axis speed SD of s * fs / sqrt(2) (module docstring):
     the 3-D speed's RMS is sqrt(3) times that. Accepts the recordings as a DataFrame too."""
     trials, rec, f = noisy
-    got = rest_speed(frame_of(trials), f)
+    got = rest_speed(recordings_from_frame(frame_of(trials)), f)
     rms = np.sqrt(np.mean(got**2))
     assert rms == pytest.approx(np.sqrt(3) * NOISE_SD * FS / np.sqrt(2), rel=0.25)
     assert got.max() < ONSET_SPEED
@@ -233,8 +233,8 @@ def test_participant_summary_counts_valid_trials_and_their_medians_and_iqrs(summ
 def test_default_window_and_onset_are_the_constants():
     """trial_features(window=..., onset_speed=...) defaults equal the module constants."""
     df = frame_of({("1", "1"): approach(), ("1", "2"): approach(amp=0.30, dur=0.3)})
-    a = trial_features(df)
-    b = trial_features(df, window=CONTACT_WINDOW, onset_speed=ONSET_SPEED)
+    a = trial_features(recordings_from_frame(df))
+    b = trial_features(recordings_from_frame(df), window=CONTACT_WINDOW, onset_speed=ONSET_SPEED)
     pd.testing.assert_frame_equal(a, b)
 
 
@@ -379,10 +379,10 @@ def test_auto_lowpass_estimates_the_noise_with_the_rates_own_derivative_window()
     speed noise with the window of the recordings' rate. Catches the minimum window used at every rate."""
     from skilllib.cohort import CohortModel, generate_cohort
     from skilllib.features import MIN_DIFF_WINDOW, approaches, choose_lowpass, diff_window, run_lowpass
-    from skilllib.pipeline import load_input
+    from skilllib.recordings import load_recordings
 
     fs = 1000.0
-    rec = load_input(generate_cohort(1, CohortModel(n_participants=1, n_trials=3, fs=fs)).frame)
+    rec = load_recordings(generate_cohort(1, CohortModel(n_participants=1, n_trials=3, fs=fs)).frame)
     assert rec.fs == pytest.approx(fs) and diff_window(rec.fs) != MIN_DIFF_WINDOW
     got = run_lowpass(rec, "auto")
     want = choose_lowpass("auto", approaches(rec), rec.fs, diff_window(rec.fs))

@@ -128,7 +128,7 @@ def test_every_sound_trial_of_a_noisy_recording_is_kept(fs, sd):
     """Tracker noise of 0.1-1 mm at 100-250 Hz with +-1 ms frame jitter: every trial valid without the noise
     is valid with it (the default filter), while without a filter most are lost at the higher noise."""
     model = CohortModel(n_participants=3, n_trials=15, fs=fs)
-    clean = trial_features(generate_cohort(21, replace(model, noise_sd=0.0)).frame, lowpass="none")
+    clean = trial_features(generate_cohort(21, replace(model, noise_sd=0.0)).recordings, lowpass="none")
     frame = generate_cohort(21, replace(model, noise_sd=sd)).frame
     rng = np.random.default_rng(21)
     frame = frame.assign(t=frame.t + rng.uniform(-0.001, 0.001, len(frame)))

@@ -21,21 +21,21 @@ from skilllib.cohort import CohortModel, generate_cohort
 from skilllib.features import segment, select, trial_features
 from skilllib.pipeline import main
 from skilllib.prototypes import _kmeans as pt
-from skilllib.recordings import read_recordings, write_recordings
+from skilllib.recordings import read_recordings, recordings_from_frame, write_recordings
 from skilllib.smoothness import SPARC_PARAMS, sparc_spectrum
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def _readme_keys() -> set[str]:
-    """The top-level keys of results.json as README's schema table names them (first column, in backticks)."""
-    text = (ROOT / "README.md").read_text()
-    table = text[text.index("### results.json") :].split("\n## ")[0]
-    rows = [line.split("|")[1] for line in table.splitlines() if line.startswith("| `")]
+def _schema_keys() -> set[str]:
+    """The top-level keys of results.json as the schema table of docs/results.md (the book's reference page)
+    names them (first column, in backticks)."""
+    text = (ROOT / "docs" / "results.md").read_text()
+    rows = [line.split("|")[1] for line in text.splitlines() if line.startswith("| `")]
     return {key for cell in rows for key in re.findall(r"`([a-z_]+)`", cell)}
 
 
-README_KEYS = _readme_keys()
+SCHEMA_KEYS = _schema_keys()
 FIGURES = (
     "features",
     "trials_by_participant",
@@ -117,7 +117,7 @@ def test_small_file_at_100_hz(tmp_path, capsys, small_frame):
 
 
 def _selected_keys(df: pd.DataFrame) -> list[tuple]:
-    f = trial_features(df)
+    f = trial_features(recordings_from_frame(df))
     return list(f.loc[f["status"] == "selected", ["participant", "trial"]].itertuples(index=False, name=None))
 
 
@@ -142,7 +142,7 @@ def test_small_data_shrink_the_sweep_and_k_with_messages(tmp_path, capsys, small
 
 @pytest.mark.parametrize("n", [0, 1, 2])
 def test_fewer_than_three_selected_trials_exit_3_with_every_trial(tmp_path, capsys, small_frame, n):
-    f = trial_features(small_frame)
+    f = trial_features(recordings_from_frame(small_frame))
     excluded = list(f.loc[f["status"] == "excluded", ["participant", "trial"]].itertuples(index=False, name=None))
     keys = _selected_keys(small_frame)[:n] + excluded[:2]
     data = _write(_only(small_frame, keys), tmp_path / "few.csv")
@@ -177,7 +177,7 @@ def test_every_trial_invalid_still_writes_results(tmp_path, capsys, small_frame)
 
 
 def test_recordings_that_start_in_motion_get_a_hint(tmp_path, capsys, small_frame):
-    f = trial_features(small_frame).set_index(["participant", "trial"])["t_onset"]
+    f = trial_features(recordings_from_frame(small_frame)).set_index(["participant", "trial"])["t_onset"]
     onset = small_frame.set_index(["participant", "trial"]).index.map(f).to_numpy()
     late = small_frame[small_frame["t"].to_numpy() > onset + 0.05]  # every recording starts after onset
     data = _write(late, tmp_path / "late.csv")
@@ -200,7 +200,7 @@ def test_jittered_time_stamps_give_the_nominal_rate(tmp_path, capsys, small_fram
 
 
 def test_the_silhouette_sweep_reports_progress(small_frame):
-    selected = select(trial_features(small_frame))
+    selected = select(trial_features(recordings_from_frame(small_frame)))
     seen = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)
@@ -299,11 +299,11 @@ def test_bad_options_are_one_line(tmp_path, capsys, small_frame):
     data = _write(small_frame, tmp_path / "rec.csv")
     code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"), "--qd-max", "1", "2")
     assert code == 2
-    _one_line_error(err, "qd_limits", "6 joints")
+    _one_line_error(err, "qd_max", "6 joints")
     for bad in (["--qd-max", "-1"], ["--k", "1"]):
         code, _, err = _run(capsys, "--data", str(tmp_path / "missing.csv"), "--out", str(tmp_path / "o"), *bad)
         assert code == 2  # options are checked before the file is read
-        _one_line_error(err, "qd_limits" if "--qd-max" in bad else "k must")
+        _one_line_error(err, "qd_max" if "--qd-max" in bad else "k must")
     with pytest.raises(SystemExit) as e:  # argparse names the valid robots
         main(["run", "--data", str(data), "--out", str(tmp_path / "o"), "--robot", "r2d2"])
     assert e.value.code == 2
@@ -543,8 +543,8 @@ def test_default_run_writes_results_and_figures(tmp_path):
         assert p["time_scale"] >= 1
         assert not (p["feasible"] and p["time_scale"] > 1)
         assert p["feasible"] or p["time_scale"] > 1 or p["flags"]
-    # the schema table of README.md (sensitivity: an option; trials_file and trial_counts: above 10,000 trials)
-    assert set(res) == README_KEYS - {"sparc_sensitivity", "trials_file", "trial_counts"}
+    # the schema table of docs/results.md (sensitivity: an option; trials_file and trial_counts: above 10,000 trials)
+    assert set(res) == SCHEMA_KEYS - {"sparc_sensitivity", "trials_file", "trial_counts"}
     assert not any("shrunk" in m or "needs more" in m for m in res["messages"])  # the cohort allows k = 6
     assert set(res["figures"]) == {f"{n}.{ext}" for n in FIGURES for ext in ("png", "svg")}
     for name in res["figures"]:

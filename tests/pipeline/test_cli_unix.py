@@ -21,7 +21,7 @@ from skilllib.features import trial_features
 from skilllib.pipeline import RUN_FILES, OutputError, main, output_folder
 from skilllib.pipeline import _run as pipeline
 from skilllib.prototypes import _kmeans as pt
-from skilllib.recordings import write_recordings
+from skilllib.recordings import recordings_from_frame, write_recordings
 
 HEAVY = ("pandas", "sklearn", "roboticstoolbox", "matplotlib", "scipy")
 
@@ -31,10 +31,10 @@ def small_file(tmp_path_factory) -> Path:
     """A file whose run is quick: 6 trials, one of them selected, so that the run stops before clustering
     (exit 3) after reading, features, results.json and the data figures: what these tests are about."""
     frame = generate_cohort(7, CohortModel(n_participants=2, n_trials=8, fs=100.0)).frame
-    f = trial_features(frame)
+    f = trial_features(recordings_from_frame(frame))
     keep = pd.concat([f[f.status == "selected"].head(1), f[f.status != "selected"].head(5)])
     frame = frame.merge(keep[["participant", "trial"]])
-    assert (trial_features(frame).status == "selected").sum() == 1
+    assert (trial_features(recordings_from_frame(frame)).status == "selected").sum() == 1
     return write_recordings(frame, tmp_path_factory.mktemp("cli") / "rec.csv")
 
 

@@ -36,8 +36,8 @@ from skilllib.pipeline import _run as pipeline
 from skilllib.pipeline import main
 from skilllib.prototypes import _kmeans as pt
 from skilllib.prototypes import sparc_sensitivity
-from skilllib.recordings import read_recordings, write_recordings
-from skilllib.robot import assess_one, dynamic_limits, get_robot, resolve_limits, transfer
+from skilllib.recordings import read_recordings, recordings_from_frame, write_recordings
+from skilllib.robot import assess_one, dynamic_limits, get_robot, transfer
 from skilllib.smoothness import DEFAULT_AMP_TH, DEFAULT_FC, DEFAULT_PADLEVEL, SPARC_PARAMS
 
 REL = 1e-12  # floats that pass through JSON (repr round-trips exactly; this only allows for rounding)
@@ -67,7 +67,7 @@ BASE_SEED, BASE_MODEL = 9, CohortModel(n_participants=5, n_trials=16, fs=60.0)
 
 
 def _reject_constant(name: str) -> Any:
-    raise AssertionError(f"results.json contains {name}: not JSON, README promises null")
+    raise AssertionError(f"results.json contains {name}: not JSON, docs/results.md promises null")
 
 
 def _load(out: Path) -> dict:
@@ -271,7 +271,7 @@ def check_transfer(
     assert tr["qdd_limits"] == (None if want_qdd is None else [float(v) for v in want_qdd])
     assert tr["tau_limits"] == (None if want_tau is None else [float(v) for v in want_tau])
     assert tr["execution"] == {"control_rate_hz": 500.0, "actuator_bandwidth_hz": 100.0}
-    limits = resolve_limits(robot, setup.robot, qdd_limits, tau_limits)
+    limits = get_robot(robot, qdd_max=qdd_limits, tau_max=tau_limits).dynamic_limits
     assert [p["cluster"] for p in tr["prototypes"]] == list(range(fit.k))
     for c, entry in enumerate(tr["prototypes"]):
         seg = segment(d.rec, _py(fit.prototypes.at[c, "participant"]), _py(fit.prototypes.at[c, "trial"]))
@@ -358,7 +358,7 @@ def cohort_frame() -> pd.DataFrame:
 
 @pytest.fixture(scope="module")
 def cohort_features(cohort_frame) -> pd.DataFrame:
-    return trial_features(cohort_frame)
+    return trial_features(recordings_from_frame(cohort_frame))
 
 
 @pytest.fixture(scope="module")
@@ -916,7 +916,7 @@ def test_no_rest_note_only_above_its_fraction(tmp_path, runs, no_rest_frame, ext
     another denominator than all trials."""
     df, n = no_rest_frame
     m_edge = int(Fraction(str(pipeline.NO_REST_FRACTION)) * n)
-    f = trial_features(df)
+    f = trial_features(recordings_from_frame(df))
     keys = list(zip(f["participant"], f["trial"]))
     assert (f["status"] != "invalid").all()
     for key in keys[: m_edge + extra]:

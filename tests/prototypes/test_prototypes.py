@@ -406,10 +406,10 @@ def test_figures(tmp_path, data):
 def test_fits_run_single_threaded_and_restore_limits():
     from threadpoolctl import threadpool_info
 
-    from skilllib.prototypes._silhouette import _single_threaded
+    from skilllib.smoothness import single_threaded
 
     before = [(i["internal_api"], i["num_threads"]) for i in threadpool_info()]
-    inside = _single_threaded(lambda: [i["num_threads"] for i in threadpool_info()])()
+    inside = single_threaded()(lambda: [i["num_threads"] for i in threadpool_info()])()
     assert inside and all(n == 1 for n in inside)
     fit_prototypes(blobs(n_per=5)[0], 3)
     assert [(i["internal_api"], i["num_threads"]) for i in threadpool_info()] == before

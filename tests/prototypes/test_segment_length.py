@@ -65,7 +65,7 @@ def test_adjusted_sparc_keeps_the_mean_and_drops_the_covariates_linear_part():
 
 
 def test_with_covariates_and_sparc_by_length_on_generated_trials():
-    f = trial_features(generate_cohort(5, CohortModel(n_participants=3, n_trials=20)).frame)
+    f = trial_features(generate_cohort(5, CohortModel(n_participants=3, n_trials=20)).recordings)
     c = with_covariates(f)
     np.testing.assert_allclose(np.exp(c.log_duration), f.duration)
     np.testing.assert_allclose(c.contact_ratio, f.contact_speed / f.pv)

@@ -700,3 +700,17 @@ def test_jitter_of_half_an_interval_still_keeps_every_trial():
     rec = recordings_from_frame(_jittered_log(0.002))
     assert (rec.trials.status == "ok").all() and (rec.trials.timing != "").all()
     assert rec.fs == pytest.approx(250.0, rel=0.05)
+
+
+def test_natural_key_orders_ids_and_file_names_as_people_do():
+    """One key for ids, file names and Parquet parts: digit runs by value, other text ignoring case, the
+    text itself last (a total, fixed order). Catches P10 before P2, all upper case before lower case, and
+    01 / 1 or P1 / p1 left in input order."""
+    from skilllib.recordings import natural_key, sort_ids
+
+    assert sort_ids(["P10", "p2", "P1", "P2", 10, "2", "p1", "01", "1"]) == [
+        "01", "1", "2", 10, "P1", "p1", "P2", "p2", "P10",
+    ]  # fmt: skip
+    assert sort_ids(["trial_10.csv", "Trial_9.csv", "trial_9b.csv"]) == ["Trial_9.csv", "trial_9b.csv", "trial_10.csv"]
+    assert sort_ids(["a01b", "a1a"]) == ["a1a", "a01b"]  # leading zeros only break ties
+    assert natural_key("P01") != natural_key("P1") and natural_key(7) == natural_key("7")

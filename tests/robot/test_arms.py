@@ -55,7 +55,9 @@ EXPECTED_QD_LIMITS = {
 
 @pytest.mark.parametrize("name", ROBOT_NAMES)
 def test_registry(name):
-    robot, q0, lim = get_robot(name.upper())
+    arm = get_robot(name.upper())
+    robot, q0, lim = arm.robot, arm.q0, arm.qd_limits
+    assert arm.name == name and arm.n == robot.n
     n = robot.n
     assert q0.shape == (n,) and lim.shape == (n,)
     np.testing.assert_allclose(lim, EXPECTED_QD_LIMITS[name], rtol=1e-15)  # the documented limits, rad/s

@@ -44,7 +44,8 @@ def _descent_acceleration(t: np.ndarray, amplitude: float, peak_speed: float) ->
 
 @pytest.mark.parametrize("name", ROBOT_NAMES)
 def test_jacobian_dot_matches_finite_differences_and_roboticstoolbox(name):
-    robot, q0, _ = get_robot(name)
+    arm = get_robot(name)
+    robot, q0 = arm.robot, arm.q0
     ets = robot.ets()
     rng = np.random.default_rng(5)
     for q in (q0, q0 + rng.uniform(-0.3, 0.3, robot.n)):
@@ -79,7 +80,8 @@ def test_pseudo_inverse_derivative_of_the_redundant_panda():
     # qd = J(q)^+ v with v and q moving (q' = qd, v' = a): the analytic qdd against the central difference
     # of J(q(t))^+ v(t) at random states; without the null-space term (I - J+ J) Jdot' (J J')^-1 v it is
     # not the derivative
-    robot, q0, _ = get_robot("panda")
+    arm = get_robot("panda")
+    robot, q0 = arm.robot, arm.q0
     ets = robot.ets()
     rng = np.random.default_rng(11)
     for _ in range(3):
@@ -130,7 +132,8 @@ def test_rne_gravity_torque_of_a_two_link_arm_by_hand():
 
 def test_puma_static_torque_is_the_gradient_of_the_potential_energy():
     # at rest rne gives the gravity load, dV/dq with V = sum_i m_i g z_i of the centres of mass
-    robot, q0, _ = get_robot("puma560")
+    arm = get_robot("puma560")
+    robot, q0 = arm.robot, arm.q0
 
     def potential(q):
         frames = robot.fkine_all(q)

@@ -19,7 +19,6 @@ from skilllib.robot import (
     get_robot,
     joint_dynamics,
     minimum_jerk_descent,
-    resolve_limits,
     simple6,
     transfer,
     transfer_block,
@@ -121,7 +120,7 @@ def test_execution_refuses_failed_samples_and_bad_settings():
 def test_assessment_and_block():
     robot = get_robot("puma560").robot
     results = [transfer("puma560", *minimum_jerk_descent(0.2, vp), cluster=c) for c, vp in enumerate((0.6, 1.3))]
-    limits = resolve_limits("puma560", robot, qdd_max=None, tau_max=[97.6, 60.0, 89.4, 24.2, 20.1, 21.3])
+    limits = get_robot("puma560", tau_max=[97.6, 60.0, 89.4, 24.2, 20.1, 21.3]).dynamic_limits
     block = transfer_block(assess(robot, results, limits))
     assert block["qdd_limits"] is None and block["tau_limits"][1] == 60.0
     assert block["execution"] == {"control_rate_hz": CONTROL_RATE_HZ, "actuator_bandwidth_hz": ACTUATOR_BANDWIDTH_HZ}
@@ -136,10 +135,11 @@ def test_assessment_and_block():
     assert set(fast["executed"]) == {"pv", "sparc", "max_tracking_error_m", "saturated_fraction", "time_scale"}
     json.dumps(block, allow_nan=False)
     with pytest.raises(ValueError, match="no dynamic parameters"):
-        resolve_limits("simple6", simple6(), tau_max=10.0)
+        get_robot("simple6", tau_max=10.0)
     with pytest.raises(ValueError, match="qdd_max must be a scalar or have 6 entries"):
-        resolve_limits("puma560", robot, qdd_max=[1.0, 2.0])
-    assert resolve_limits("panda", get_robot("panda").robot).qdd_limits[1] == 7.5
+        get_robot("puma560", qdd_max=[1.0, 2.0])
+    assert get_robot("panda").qdd_limits[1] == 7.5
+    assert get_robot("panda", qd_max=1.0).qdd_limits[1] == 7.5  # one override leaves the other limits
 
 
 def test_dynamics_figures():

@@ -61,7 +61,8 @@ def test_random_poses_lie_in_the_shell_and_its_distance_ignores_q1_q2(name):
 
 @pytest.mark.parametrize("name", ["simple6", "ur5", "puma560"])
 def test_joint_axes_from_the_jacobian_are_the_dh_axes(name):
-    robot, q0, _ = get_robot(name)
+    arm = get_robot(name)
+    robot, q0 = arm.robot, arm.q0
     w, o = joint_axes(robot.ets(), q0)
     pos, axes = joint_origins(robot, q0)  # fkine_all: z axis and origin of DH frame j-1
     np.testing.assert_allclose(w, axes, atol=1e-12)
@@ -86,7 +87,8 @@ def test_arm_without_a_shoulder_point_gets_the_loose_shell():
 def test_ik_chain_solves_what_the_seeded_search_cannot(monkeypatch):
     # Puma 560: a target 0.3 m away from the start pose's tool point; the seeded LM search is limited to
     # 2 iterations here, so it stops short; the restarting searches solve it inside the joint limits
-    robot, q0, _ = get_robot("puma560")
+    arm = get_robot("puma560")
+    robot, q0 = arm.robot, arm.q0
     ets = robot.ets()
     target = ets.eval(q0)
     target[:3, 3] += [-0.1, 0.2, -0.2]

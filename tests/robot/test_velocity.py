@@ -93,7 +93,8 @@ def test_default_pose_through_transfer():
 
 @pytest.mark.parametrize("name", ROBOT_NAMES)
 def test_jacobian_matches_finite_differences(name):
-    robot, q0, _ = get_robot(name)
+    arm = get_robot(name)
+    robot, q0 = arm.robot, arm.q0
     rng = np.random.default_rng(1)
     for q in (q0, q0 + rng.uniform(-0.3, 0.3, robot.n)):
         np.testing.assert_allclose(robot.ets().jacob0(q), _fd_jacobian(robot, q), atol=1e-7)
@@ -126,7 +127,8 @@ def test_integrated_qd_reproduces_ik_path(name):
 def test_ik_residual_orientation_and_placement(name):
     t, p, v = minimum_jerk_descent(0.2, 0.8)
     r = transfer(name, t, p, v)
-    robot, q0, _ = get_robot(name)
+    arm = get_robot(name)
+    robot, q0 = arm.robot, arm.q0
     ets = robot.ets()
     T0 = ets.eval(q0)
     np.testing.assert_allclose(r.x_base[0], T0[:3, 3])  # the movement starts at the tool point of q0
@@ -590,7 +592,8 @@ def test_condition_number_edges(monkeypatch):
 def test_q0_joint_limit_tolerance():
     # Puma 560 (asymmetric limits): q0 at a limit or 1e-9 rad inside it is accepted and is the first
     # sample's solution; 1e-8 rad outside is an error naming the joint
-    robot, q_start, _ = get_robot("puma560")
+    arm = get_robot("puma560")
+    robot, q_start = arm.robot, arm.q0
     qlim = robot.ets().qlim
     for j in range(robot.n):
         for side, outward in ((0, -1.0), (1, 1.0)):
@@ -609,7 +612,8 @@ def test_q0_joint_limit_tolerance():
 def test_ik_solution_outside_the_joint_limits_is_not_accepted():
     # Puma 560 with q1 0.01 rad below its upper limit (160 deg), moved 1 cm per sample along the direction
     # q1 turns the tool: from sample 1 on the targets need q1 > 160 deg (or another branch)
-    robot, q_start, _ = get_robot("puma560")
+    arm = get_robot("puma560")
+    robot, q_start = arm.robot, arm.q0
     ets = robot.ets()
     q0 = q_start.copy()
     q0[0] = ets.qlim[1, 0] - 0.01

@@ -434,7 +434,7 @@ def test_nfft_is_the_authors_formula():
 
 def test_book_parameters_are_the_defaults():
     defaults = {k: p.default for k, p in inspect.signature(sparc).parameters.items() if k in SPARC_PARAMS}
-    # fc: the KI 2020 paper's "0 to 20 Hz" (the authors' MATLAB default), chosen in chapters 1 and 4
+    # fc: the KI 2020 paper's "0 to 20 Hz" (the authors' MATLAB default), chosen in chapters 2 and 4
     assert defaults == dict(SPARC_PARAMS) == {"fc": 20.0, "amp_th": 0.05, "padlevel": 4}
     assert skilllib.sparc is sparc
 

@@ -245,3 +245,42 @@ def test_profiles_of_text_are_refused_with_the_message_not_a_numpy_error():
     for many in (sparc_many, ldlj_many):
         with pytest.raises(ValueError, match=r"^speeds must be a sequence of 1-D speed profiles \(m/s\)$"):
             many([text], FS)
+
+
+def test_single_threaded_limits_the_pools_and_restores_them():
+    """``single_threaded`` (context manager and decorator) holds the chosen thread pools at one thread
+    and restores them on leaving, also after an exception. Catches limits left behind or not applied."""
+    from threadpoolctl import threadpool_info
+
+    from skilllib.smoothness import single_threaded
+
+    def threads(api=None):
+        return [i["num_threads"] for i in threadpool_info() if api in (None, i["user_api"])]
+
+    before = [(i["filepath"], i["num_threads"]) for i in threadpool_info()]
+    with single_threaded("blas"):
+        assert threads("blas") and set(threads("blas")) == {1}
+    assert single_threaded()(threads)() and set(single_threaded()(threads)()) == {1}
+    with pytest.raises(RuntimeError), single_threaded():
+        raise RuntimeError
+    assert [(i["filepath"], i["num_threads"]) for i in threadpool_info()] == before
+
+
+def test_single_threaded_sees_pools_loaded_after_its_first_use():
+    """A pool loaded after the first use (scikit-learn's OpenMP, imported later) is limited too: the
+    controller is not frozen at the first call. Catches K-means left on all threads because SPARC ran
+    first. Runs in a fresh interpreter, where scikit-learn is not yet imported."""
+    import subprocess
+    import sys
+
+    code = (
+        "from threadpoolctl import threadpool_info\n"
+        "from skilllib.smoothness import single_threaded\n"
+        "with single_threaded():\n    pass\n"
+        "import sklearn.cluster\n"
+        "with single_threaded():\n"
+        "    inside = {i['user_api']: i['num_threads'] for i in threadpool_info()}\n"
+        "print(sorted(inside.items()))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert "('openmp', 1)" in out and "('blas', 1)" in out

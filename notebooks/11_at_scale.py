@@ -40,30 +40,26 @@ import numpy as np
 import pandas as pd
 from sklearn.metrics import silhouette_score
 
-import skilllib
+import skilllib as sk
+import skilllib.figures as skf
 
-from skilllib.features import _dask as partitions
-from skilllib.prototypes import _kmeans as pt, _silhouette as silhouette
-from skilllib.smoothness import _measures as smoothness
-from skilllib.pipeline import _trials_file as trialtable
-from skilllib.recordings import read_recordings
-from skilllib.datasets import cohort_path
-from skilllib.features import segment_arrays, select, trial_features
-from skilllib.figures import plot_scaling
-
-# the repository (the benchmark's measurements are committed there), wherever the chapter runs
-ROOT = next(p for p in [Path.cwd(), *Path.cwd().parents, Path(skilllib.__file__).parents[1]]
-            if (p / "benchmarks" / "results" / "scale.json").exists())
-rec = read_recordings(cohort_path())
-table = trial_features(rec)
+# the repository (the benchmark's measurements are committed there), wherever it runs
+SCALE_JSON = Path("benchmarks", "results", "scale.json")
+ROOT = next(
+    p
+    for p in [Path.cwd(), *Path.cwd().parents, Path(sk.__file__).parents[1]]
+    if (p / SCALE_JSON).exists()
+)
+rec = sk.read_recordings(sk.cohort_path())
+table = sk.trial_features(rec)
 
 # %% [markdown]
 # ## The same table without a loop per trial
 #
 # Chapters 3 and 4 segment one trial at a time with
-# [`segment_arrays`](#skilllib.features.segment_arrays): the derivative of the approach, the onset,
+# [`sk.segment_arrays`](#skilllib.features.segment_arrays): the derivative of the approach, the onset,
 # the segment. That remains the definition. For many trials
-# [`skilllib.features`](#skilllib.features.segment_many) gathers the trials whose approaches have the same
+# [`sk.trial_features`](#skilllib.features.trial_features) gathers the trials whose approaches have the same
 # length into one block and runs every step on the block along its rows. A numpy reduction along the rows
 # of a block (the sums of LDLJ, the medians of the checks, the derivative's convolution) computes each
 # row exactly as it computes that row alone, so the block path gives the same bits (at rates of 240 Hz
@@ -75,21 +71,33 @@ table = trial_features(rec)
 rows = []
 for (p, tr), status in zip(rec.keys(), rec.trials["status"]):
     d = rec.trial(p, tr)
-    seg = segment_arrays(d.t, d.pos, d.contact, rec.fs)
+    seg = sk.segment_arrays(d.t, d.pos, d.contact, rec.fs)
     if status == "ok" and not isinstance(seg, str):
-        rows.append({"pv": seg.speed.max(), "contact_speed": seg.speed[-1], "duration": seg.duration,
-                     "ldlj": smoothness.ldlj(seg.speed, rec.fs), "speed": seg.speed})
+        v = seg.speed
+        rows.append(
+            {
+                "pv": v.max(),
+                "contact_speed": v[-1],
+                "duration": seg.duration,
+                "ldlj": sk.ldlj(v, rec.fs),
+                "speed": v,
+            }
+        )
 one_by_one = pd.DataFrame(rows)
-one_by_one["sparc"] = smoothness.sparc_bands(list(one_by_one["speed"]), rec.fs).sparc
+one_by_one["sparc"] = sk.sparc_bands(list(one_by_one["speed"]), rec.fs).sparc
 vectorised = table[table["status"] != "invalid"].reset_index(drop=True)
-same = {c: bool(np.array_equal(one_by_one[c].to_numpy(), vectorised[c].to_numpy()))
-        for c in ("pv", "contact_speed", "duration", "ldlj", "sparc")}
+same = {
+    c: bool(np.array_equal(one_by_one[c].to_numpy(), vectorised[c].to_numpy()))
+    for c in ("pv", "contact_speed", "duration", "ldlj", "sparc")
+}
 print(f"{len(one_by_one)} segmented trials, one by one and vectorised:")
 for column, equal in same.items():
     print(f"  {column:14s} every bit the same: {equal}")
 
 # %% tags=["remove-cell"]
-assert len(one_by_one) == len(vectorised) and all(same.values()), "text: 'the same bits'"
+assert len(one_by_one) == len(vectorised) and all(same.values()), (
+    "text: 'the same bits'"
+)
 
 # %% [markdown]
 # SPARC needs one more condition. [`sparc_bands`](#skilllib.smoothness.sparc_bands) evaluates the
@@ -107,7 +115,7 @@ assert len(one_by_one) == len(vectorised) and all(same.values()), "text: 'the sa
 #
 # The silhouette of a trial compares its distance to its own cluster with its distance to the nearest
 # other cluster [@rousseeuw1987]. Every pair of trials enters, so the cost of the exact average grows with
-# $N^2$, and the sweep fits 15 clusterings. Up to 5,000 points (`skilllib.prototypes.SILHOUETTE_EXACT_MAX`)
+# $N^2$, and the sweep fits 15 clusterings. Up to 5,000 points (`sk.SILHOUETTE_EXACT_MAX`)
 # the book computes it exactly. Beyond that
 # it reports the mean over 10 random subsamples of 1,000 trials each, stratified by cluster so that a
 # small cluster is always represented, together with the spread of that mean. The subsamples are seeded
@@ -115,27 +123,36 @@ assert len(one_by_one) == len(vectorised) and all(same.values()), "text: 'the sa
 # points, and the estimate for $k = 6$ is compared with the exact value.
 
 # %%
-sel = select(table)
+sel = sk.select(table)
 rng = np.random.default_rng(1)
-copies = 12
-tiled = pd.DataFrame({"participant": np.repeat(np.arange(copies), len(sel)).astype(str),
-                      "trial": np.tile(np.arange(len(sel)), copies).astype(str),
-                      "pv": np.tile(sel["pv"], copies) * rng.uniform(0.97, 1.03, copies * len(sel)),
-                      "sparc": np.tile(sel["sparc"], copies) + rng.normal(0, 0.01, copies * len(sel))})
-fit = pt.fit_prototypes(tiled, 6)
+copies, n = 12, len(sel)
+tiled = pd.DataFrame(
+    {
+        "participant": np.repeat(np.arange(copies), n).astype(str),
+        "trial": np.tile(np.arange(n), copies).astype(str),
+        "pv": np.tile(sel["pv"], copies) * rng.uniform(0.97, 1.03, copies * n),
+        "sparc": np.tile(sel["sparc"], copies) + rng.normal(0, 0.01, copies * n),
+    }
+)
+fit = sk.fit_prototypes(tiled, 6)
 est = fit.silhouette_estimate
+se = est.sd / np.sqrt(est.repeats)  # the standard error of the estimate
 exact = silhouette_score(tiled[["pv", "sparc"]].to_numpy(), fit.labels)
 print(f"{len(tiled)} points, k = 6")
-print(f"  estimate: {fit.silhouette:.4f} (mean of {est.repeats} subsamples of {est.sample_size}; "
-      f"SD of the mean {est.sd / np.sqrt(est.repeats):.4f})")
+print(
+    f"  estimate: {fit.silhouette:.4f} (mean of {est.repeats} subsamples "
+    f"of {est.sample_size}; SD of the mean {se:.4f})"
+)
 print(f"  exact:    {exact:.4f} (difference {fit.silhouette - exact:+.4f})")
 
 # %% tags=["remove-cell"]
-assert (silhouette.SILHOUETTE_EXACT_MAX, silhouette.SILHOUETTE_REPEATS, silhouette.SILHOUETTE_SAMPLE) == (5000, 10, 1000)
-assert trialtable.TRIALS_IN_JSON_MAX == 10_000, "text: 'above 10,000 trials'"
-assert fit.silhouette_method == "subsample" and len(tiled) > silhouette.SILHOUETTE_EXACT_MAX
+assert (sk.SILHOUETTE_EXACT_MAX, est.repeats, est.sample_size) == (5000, 10, 1000), (
+    "text: 'up to 5,000 points', '10 random subsamples of 1,000 trials'"
+)
+assert sk.TRIALS_IN_JSON_MAX == 10_000, "text: 'above 10,000 trials'"
+assert fit.silhouette_method == "subsample" and len(tiled) > sk.SILHOUETTE_EXACT_MAX
 assert 7_500 < len(tiled) < 8_500, "text: 'about 8,000 points'"
-assert abs(fit.silhouette - exact) < 3 * est.sd / np.sqrt(est.repeats), "text: estimate within its spread"
+assert abs(fit.silhouette - exact) < 3 * se, "text: estimate within its spread"
 
 # %% [markdown]
 # The estimate lies within three of its standard errors of the exact value. `results.json` says which
@@ -149,7 +166,7 @@ assert abs(fit.silhouette - exact) < 3 * est.sd / np.sqrt(est.repeats), "text: e
 # it writes the per-trial table as `trials.parquet` beside `results.json`.
 #
 # Beyond one machine the corpus is a folder of Parquet files, each holding whole trials: the partitions.
-# [`skilllib.features`](#skilllib.features.corpus_features) runs on every partition, on a worker of a
+# [`sk.cluster_features`](#skilllib.features.cluster_features) runs on every partition, on a worker of a
 # Dask cluster, the same functions as the in-memory path. What the in-memory path decides over the whole
 # file is decided here over the whole corpus, from small per-partition summaries:
 #
@@ -164,17 +181,17 @@ assert abs(fit.silhouette - exact) < 3 * est.sd / np.sqrt(est.repeats), "text: e
 folder = Path(tempfile.mkdtemp()) / "cohort"
 folder.mkdir()
 frame = rec.frame.astype({"participant": str, "trial": str})
-cuts = [0, int((frame["participant"] == "4").to_numpy().argmax()), int((frame["participant"] == "8").to_numpy().argmax()),
-        len(frame)]
+first = frame["participant"].to_numpy()
+cuts = [0, int((first == "4").argmax()), int((first == "8").argmax()), len(frame)]
 for k in range(3):
-    frame.iloc[cuts[k]:cuts[k + 1]].to_parquet(folder / f"part-{k}.parquet", index=False)
-client = partitions.client_for(workers=2)
-try:
-    on_cluster = partitions.corpus_features(folder, client)
-finally:
-    partitions.close_client(client)
-identical = on_cluster.features.equals(table)
-print(f"{len(on_cluster.files)} partitions on 2 workers: {len(on_cluster.features)} trials")
+    part = frame.iloc[cuts[k] : cuts[k + 1]]
+    part.to_parquet(folder / f"part-{k}.parquet", index=False)
+n_parts = len(list(folder.glob("*.parquet")))
+_, on_cluster = sk.cluster_features(
+    folder, 2, None, lowpass="auto", sparc_params=sk.SPARC_PARAMS
+)  # a local cluster of 2 workers, closed on return
+identical = on_cluster.equals(table)
+print(f"{n_parts} partitions on 2 workers: {len(on_cluster)} trials")
 print(f"the feature table equals the in-memory one: {identical}")
 
 # %% tags=["remove-cell"]
@@ -198,43 +215,89 @@ assert identical, "text: the cluster's feature table is the in-memory one"
 # [](#fig-scaling) draws them.
 
 # %%
-bench = json.loads((ROOT / "benchmarks" / "results" / "scale.json").read_text())
+bench = json.loads((ROOT / SCALE_JSON).read_text())
 runs = pd.DataFrame(bench["rows"])
-shown = runs[["trials", "input", "mode", "wall_s", "peak_main_mb", "peak_worker_mb", "failed"]].copy()
-shown.loc[shown["mode"] != "dask", "peak_worker_mb"] = np.nan  # only Dask runs have workers
-print(f"measured {bench['when']} at commit {bench['machine']['commit']} on {bench['machine']['cpus']} CPUs")
+columns = [
+    "trials",
+    "input",
+    "mode",
+    "wall_s",
+    "peak_main_mb",
+    "peak_worker_mb",
+    "failed",
+]
+shown = runs[columns].copy()
+shown.loc[shown["mode"] != "dask", "peak_worker_mb"] = (
+    np.nan
+)  # only Dask runs have workers
+machine = bench["machine"]
+print(
+    f"measured {bench['when']} at commit {machine['commit']} on {machine['cpus']} CPUs"
+)
 print(shown.round(1).to_string(index=False))
 
 # %%
 #| label: fig-scaling
 #| caption: Synthetic corpora (the cohort tiled with jittered copies). Wall time and peak memory of `python -m skilllib run --no-figures` against the number of trials, in memory from one CSV file or a folder of Parquet files, and on a local Dask cluster of two workers; measured on one shared 2-core virtual machine (benchmarks/results/scale.json).
-plot_scaling(bench["rows"]);
-
+fig = skf.plot_scaling(bench["rows"])
 # %%
-fits = bench["fits"]  # benchmarks/bench_scale.py's fits: slope from 150,000 trials up, cost of 10^6 more
+# bench_scale.py's fits: the slope from 150,000 trials up, the cost of 10^6 more
+fits = bench["fits"]
 memory_csv, cluster = fits["in-memory, csv"], fits["Dask, 2 workers, parquet"]
 slope = memory_csv["time_s"]["slope"]
-s_per_million, mb_per_million = memory_csv["time_s"]["per_million"], memory_csv["peak_main_mb"]["per_million"]
-client_mb_per_million = cluster["peak_main_mb"]["per_million"]
-at_150k = runs[(runs["mode"] == "inmemory") & (runs["input"] == "csv")].set_index("trials").loc[150_000]
-print(f"150,000 trials in memory: {at_150k['wall_s']:.0f} s, {at_150k['peak_main_mb']:,.0f} MB")
+s_per_million = memory_csv["time_s"]["per_million"]
+mb_per_million = memory_csv["peak_main_mb"]["per_million"]
+client_gb_per_million = cluster["peak_main_mb"]["per_million"] / 1e3
+by_mode = runs.set_index("trials")
+csv_runs = by_mode[(by_mode["mode"] == "inmemory") & (by_mode["input"] == "csv")]
+parquet_runs = by_mode[
+    (by_mode["mode"] == "inmemory") & (by_mode["input"] == "parquet")
+]
+dask_runs = by_mode[by_mode["mode"] == "dask"]
+at_150k = csv_runs.loc[150_000]
+print(
+    f"150,000 trials in memory: {at_150k['wall_s']:.0f} s, "
+    f"{at_150k['peak_main_mb']:,.0f} MB"
+)
 print(f"in memory, from 150,000 trials up: time ~ N^{slope:.2f}")
-print(f"  10^6 more trials cost {s_per_million:.0f} s and {mb_per_million / 1e3:.1f} GB")
-print(f"  10^8 trials: about {s_per_million * 100 / 3600:.1f} h and {mb_per_million * 100 / 1e3:,.0f} GB")
+print(
+    f"  10^6 more trials cost {s_per_million:.0f} s and {mb_per_million / 1e3:.1f} GB"
+)
+print(
+    f"  10^8 trials: about {s_per_million * 100 / 3600:.1f} h "
+    f"and {mb_per_million * 100 / 1e3:,.0f} GB"
+)
 print("on the cluster, the client's memory:")
-print(f"  +{client_mb_per_million / 1e3:.2f} GB per 10^6 trials, about {client_mb_per_million * 100 / 1e3:.0f} GB for 10^8")
+print(
+    f"  +{client_gb_per_million:.2f} GB per 10^6 trials, "
+    f"about {client_gb_per_million * 100:.0f} GB for 10^8"
+)
+print(
+    "a Dask worker's peak, largest over all runs:",
+    f"{dask_runs['peak_worker_mb'].max():.0f} MB",
+)
 
 # %% tags=["remove-cell"]
-assert at_150k["wall_s"] < 60 and at_150k["peak_main_mb"] < 1500, "issue 15: 150,000 trials under 60 s and 1.5 GB"
-assert memory_csv["time_s"]["sizes"][0] == 150_000, "text: the slope is fitted from 150,000 trials up"
+assert at_150k["wall_s"] < 60 and at_150k["peak_main_mb"] < 1500, (
+    "issue 15: 150,000 trials under 60 s and 1.5 GB"
+)
+assert memory_csv["time_s"]["sizes"][0] == 150_000, (
+    "text: the slope is fitted from 150,000 trials up"
+)
 assert 0.85 < slope < 1.15, "text: time grows in proportion to N from 150,000 trials up"
-assert (runs["trials"].max() >= 1_000_000) and not runs["failed"].any(), "text: every run up to 10^6 trials finished"
-assert mb_per_million * 100 > bench["machine"]["ram_mb"], "text: 10^8 trials do not fit in this machine in memory"
-assert client_mb_per_million * 100 / 1e3 > 20, "text: the client needs tens of GB at 10^8"
-workers = runs[runs["mode"] == "dask"]
-assert workers["peak_worker_mb"].max() < 1000, "text: a worker's peak stays within a few hundred MB"
-assert (workers.set_index("trials")["wall_s"] > runs[(runs["mode"] == "inmemory") & (runs["input"] == "parquet")]
-        .set_index("trials")["wall_s"]).all(), "text: two local workers are slower than the in-memory path"
+assert runs["trials"].max() >= 1_000_000 and not runs["failed"].any(), (
+    "text: every run up to 10^6 trials finished"
+)
+assert mb_per_million * 100 > machine["ram_mb"], (
+    "text: 10^8 trials do not fit in this machine in memory"
+)
+assert client_gb_per_million * 100 > 20, "text: the client needs tens of GB at 10^8"
+assert dask_runs["peak_worker_mb"].max() < 1000, (
+    "text: a worker's peak stays within a few hundred MB"
+)
+assert (dask_runs["wall_s"] > parquet_runs["wall_s"]).all(), (
+    "text: two local workers are slower than the in-memory path"
+)
 
 # %% [markdown]
 # From 150,000 trials up, the time of a whole run grows in proportion to the number of trials (the slope
