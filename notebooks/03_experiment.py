@@ -321,7 +321,7 @@ fig = skf.plot_participant_features(feats)
 # quadratic fitted over a window of fixed duration, 2/60 s). At the experiment's 60 Hz that window is
 # three samples and the derivative is the second-order finite difference (central inside, three-point
 # one-sided at the ends); at higher rates the window keeps its duration, so the speed noise does not grow
-# with the rate (chapter 10 shows why that matters). Its norm is the speed. Only the samples *before* contact are
+# with the rate (chapter 13 shows why that matters). Its norm is the speed. Only the samples *before* contact are
 # used: the impact is a velocity discontinuity, and a difference across it would mix the approach with
 # the rest on the surface. No low-pass filter is applied. White position noise of standard deviation
 # $\sigma$ = 0.03 mm (the device's resolution) becomes, through the central difference

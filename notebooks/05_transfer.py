@@ -27,7 +27,7 @@
 # on three real arms (UR5, Puma 560 and the 7-joint Panda) and closes with the paper's two design
 # questions. Everything here stays at the velocity level, as the paper does; the accelerations,
 # torques, the executed motion and the limits of the workspace follow in
-# [the next chapter](08_dynamics.ipynb).
+# [the next chapter](09_dynamics.ipynb).
 #
 # ```{note}
 # The data are synthetic. The original recordings are not public; the cohort in `data/cohort.csv` was
@@ -135,7 +135,7 @@ pd.DataFrame(J, index=rows, columns=joints).round(3) + 0.0  # + 0.0: no -0.0
 #    one solution branch; the position residual $|p(q_k) - p_k|$ is checked against
 #    $10^{-6}$ m, since the solver's own tolerance bounds a squared error, not the distance. (When that
 #    search fails, restarts and other solvers follow, and a target outside the arm's reach is not searched
-#    at all: [the next chapter](08_dynamics.ipynb) shows both.)
+#    at all: [the next chapter](09_dynamics.ipynb) shows both.)
 # 2. **Jacobian**: $J(q_k)$ in the base frame (`jacob0`).
 # 3. **Singularity check**: $\det J(q_k)$ and $\kappa(J(q_k))$; a sample with $\kappa$ above 100 is
 #    flagged ill-conditioned, one above $10^{12}$ singular.
@@ -1101,7 +1101,7 @@ assert all(
 #    slows down. Comparisons across time scales of a capped profile should scale the cut-off.
 #
 # A real arm limits more than its joint speeds, and a command is not yet a motion:
-# [the next chapter](08_dynamics.ipynb) asks the same questions of the accelerations and torques the
+# [the next chapter](09_dynamics.ipynb) asks the same questions of the accelerations and torques the
 # prototypes need and of the motion a simulated controller executes. The velocity limits are
 # assumptions of the book (Simple6 and the Puma 560) or manufacturer's values (the UR5's and the
 # Panda's datasheets), and every function takes others: the verdicts are only as good as the limits

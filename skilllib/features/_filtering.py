@@ -34,7 +34,7 @@ Only the samples before contact are filtered (the approach; the impact is a velo
 would smear into it), each end extended by odd reflection about a straight line fitted to the samples
 there (:func:`_extend`), not about the raw end sample as scipy's default does, whose noise the filter
 would otherwise keep as a step at the first sample.
-What filtering does to SPARC is shown in chapter 10: it removes spectrum above the cut-off, and a band
+What filtering does to SPARC is shown in chapter 13: it removes spectrum above the cut-off, and a band
 that SPARC reads beyond the cut-off is partly the filter's (the pipeline counts those trials).
 """
 

@@ -87,7 +87,7 @@ def _parser() -> argparse.ArgumentParser:
         required=True,
         help="folder for results.json and the figures (replaced as a whole when the run ends)",
     )
-    g = r.add_argument_group("reading other formats (chapter 9)")
+    g = r.add_argument_group("reading other formats (chapter 11)")
     g.add_argument(
         "--columns",
         type=_columns,

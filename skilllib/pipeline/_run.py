@@ -223,10 +223,10 @@ def run(
     """Run the pipeline on ``data`` (default: the book's synthetic cohort) and write ``out``.
 
     ``data``: a path (CSV, compressed CSV, C3D, TRC, or a folder of them), a pandas DataFrame in the
-    recordings format, or :class:`~skilllib.recordings.Recordings`; ``read_options``: how to read it
-    (:func:`skilllib.recordings.load_recordings`; None: the book's synthetic cohort); ``k``: clusters (the
-    paper: 6), reduced with a message when the selected trials
-    allow fewer; ``robot``: a name of :func:`skilllib.robot.get_robot`; ``qd_max``: joint velocity limits
+    recordings format, or :class:`~skilllib.recordings.Recordings`; None: the book's synthetic cohort;
+    ``read_options``: how to read it (the options of :func:`skilllib.recordings.load_recordings`); ``k``:
+    clusters (the paper: 6), reduced with a message when the selected trials allow fewer; ``robot``: a name
+    of :func:`skilllib.robot.get_robot`; ``qd_max``: joint velocity limits
     in rad/s (one for all joints or one per joint; default: the robot's); ``qdd_max`` (rad/s^2) and
     ``tau_max`` (N m): joint acceleration and torque limits, likewise (default: the robot's,
     :func:`skilllib.robot.dynamic_limits`); ``scaling``: "raw" (the paper) or "standard"; ``random_state``:
@@ -429,7 +429,7 @@ def compute(
         result.messages.append(
             f"{no_rest} of {len(features)} trials are invalid with 'no rest before onset': either the recordings "
             f"start after the movement began, or the position noise is so large that its derivative exceeds the "
-            f"{ONSET_SPEED:g} m/s onset speed; then try {hint} (chapter 10)"
+            f"{ONSET_SPEED:g} m/s onset speed; then try {hint} (chapter 13)"
         )
     if lowpass.cutoff_hz is not None:
         result.messages.append(filter_message(selected, lowpass))
@@ -531,7 +531,7 @@ def filter_message(selected: pd.DataFrame, lowpass: Lowpass) -> str:
     return (
         f"positions were low-pass filtered at {lowpass.cutoff_hz:.3g} Hz ({lowpass.chosen_by}; zero-lag "
         f"Butterworth, filter in results.json); SPARC's band reaches above that cut-off in {beyond} of "
-        f"{len(selected)} selected trials, whose SPARC is partly the filter's (chapter 10)"
+        f"{len(selected)} selected trials, whose SPARC is partly the filter's (chapter 13)"
     )
 
 

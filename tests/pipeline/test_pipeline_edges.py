@@ -391,9 +391,9 @@ def started_late() -> pd.DataFrame:
 @pytest.mark.parametrize(
     "lowpass, hint",
     [
-        ("none", "then try a low-pass filter (--lowpass auto or HZ) (chapter 10)"),
-        (CUTOFF_HZ, "then try a stronger low-pass filter (--lowpass HZ) (chapter 10)"),
-        ("auto", "then try a low-pass filter (--lowpass HZ) (chapter 10)"),
+        ("none", "then try a low-pass filter (--lowpass auto or HZ) (chapter 13)"),
+        (CUTOFF_HZ, "then try a stronger low-pass filter (--lowpass HZ) (chapter 13)"),
+        ("auto", "then try a low-pass filter (--lowpass HZ) (chapter 13)"),
     ],
 )
 def test_many_trials_without_rest_get_the_hint_that_fits_the_filter(started_late, lowpass, hint):

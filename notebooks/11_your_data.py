@@ -25,7 +25,7 @@
 # choose another robot and other joint velocity limits, and what happens when a file or a trial is
 # broken. What the pipeline does with the time stamps, the sampling rate and tracker noise before it
 # computes a feature is the subject of the next chapter,
-# [Noise, sampling rates and the low-pass filter](10_noise_and_filters.ipynb). The reference pages
+# [Noise, sampling rates and the low-pass filter](13_noise_and_filters.ipynb). The reference pages
 # hold the details: [the command](../docs/cli.md), [the input formats](../docs/inputs.md) and
 # [results.json](../docs/results.md).
 #
@@ -197,7 +197,7 @@ assert 0 < (dn != 0).sum() <= 4 and d_sparc[dn != 0].max() > 0.05, (
 # Time stamps come as labs write them too: at any rate, with jitter and dropped frames, and with
 # tracker noise in the positions. What the pipeline does with them (it reads the rate, resamples
 # irregular trials and low-pass filters noisy positions) is the subject of
-# [the next chapter](10_noise_and_filters.ipynb).
+# [the next chapter](13_noise_and_filters.ipynb).
 
 # %% [markdown]
 # ## An example file
@@ -241,7 +241,7 @@ assert check.fs > sk.CohortModel().fs == 60, (
 # `puma560`, `panda`), `--qd-max RAD_S ...` (one joint velocity limit for all joints, or one per joint),
 # `--scaling raw|standard` (features as the paper uses them, or standardised before K-means), `--seed`
 # (of K-means), `--lowpass auto|none|HZ` (the low-pass filter of
-# [the next chapter](10_noise_and_filters.ipynb)), the reading options of *Other formats*,
+# [the next chapter](13_noise_and_filters.ipynb)), the reading options of *Other formats*,
 # `--no-figures`, `--quiet` (no progress bars; they appear only on a terminal, never in a redirected
 # log), `--debug` (a traceback for an unexpected error), `--version`. A summary closes the run.
 #
@@ -336,7 +336,7 @@ assert n_capped / status["selected"] < 0.1, (
 # adapting: k = 6 is silhouette-valid for these data. On Simple6 all six prototypes stay within the
 # joint *velocity* limits (the paper's question), the fastest joint under half its limit of 3.14 rad/s;
 # but none is feasible as recorded: the acceleration limit (5 rad/s², the book's assumption for
-# Simple6, chapter 8) binds for every one, and each would have to be slowed by x1.2 to x1.9, as the
+# Simple6, chapter 9) binds for every one, and each would have to be slowed by x1.2 to x1.9, as the
 # summary's `feasibility` line says (0 of 6). The one `note:` line counts the
 # selected trials whose SPARC band was ended by fc = 20 Hz rather than by the amplitude threshold
 # (`sparc_capped`): 4 of the 78 selected trials, so fc decides the SPARC of only a few trials here.
@@ -475,10 +475,10 @@ assert stems == FIGURES, (
 # | `prototype_speed_profiles` | the speed profile of every prototype (the paper's Fig. 2b) | chapter 4 |
 # | `joint_velocities` | the robot's joint velocities for every prototype, with the limits (the paper's Fig. 4) | chapter 5 |
 # | `frame_mapping` | where the fastest prototype's path lies in the robot's workspace | chapter 5 |
-# | `joint_accelerations` | the robot's joint accelerations for every prototype, with the limits | chapter 8 |
-# | `joint_torques` | only on an arm with dynamic parameters (`ur5`, `puma560`, `panda`): every joint's torque over its limit | chapter 8 |
-# | `executed_speed` | the prototype's tool speed against the simulated execution, as recorded and slowed by its time scale | chapter 8 |
-# | `time_scales` | the time scale each limit asks for and the one of every limit, with the binding limit | chapter 8 |
+# | `joint_accelerations` | the robot's joint accelerations for every prototype, with the limits | chapter 9 |
+# | `joint_torques` | only on an arm with dynamic parameters (`ur5`, `puma560`, `panda`): every joint's torque over its limit | chapter 9 |
+# | `executed_speed` | the prototype's tool speed against the simulated execution, as recorded and slowed by its time scale | chapter 9 |
+# | `time_scales` | the time scale each limit asks for and the one of every limit, with the binding limit | chapter 9 |
 # | `sparc_sensitivity` | only with `--sensitivity`: each selected trial's SPARC under the other settings against this run's; the silhouette sweep under every setting | chapter 6 |
 #
 # Look at `trials_by_participant` first: it shows at once whether the export is right (y should fall
@@ -775,7 +775,7 @@ assert protos_broken != protos, "text: 'some prototypes change'"
 #
 # Two more trial-level checks need no example: a trial with fewer samples from onset to contact than
 # the segmentation needs is invalid (*too short*), and so is a trial sampled at another rate than the
-# rest of the file or with a gap in its time stamps ([chapter 10](10_noise_and_filters.ipynb)). With
+# rest of the file or with a gap in its time stamps ([chapter 13](13_noise_and_filters.ipynb)). With
 # few selected trials the silhouette range
 # shrinks to what they allow, and a `--k` larger than that is reduced, each said in a `note:` line and
 # in `messages`. With fewer than 3 selected trials the run still writes `results.json` with every
