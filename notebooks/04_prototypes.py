@@ -237,7 +237,7 @@ assert (gaps["sparc"] > 0).all() and round(sd[1], 2) == 0.09, (
 # its contact speed and its distance from the centre: a prototype stands for its cluster only as well
 # as it lies near the centre, and a small, scattered cluster can have its centre where no trial is.
 # Here every prototype lies within 0.03 of its centre in the (PV, SPARC) plane. One of them, the slowest
-# cluster's, has a SPARC band ended by the 20 Hz cap: its SPARC depends on $f_c$ (chapter 5 comes back to
+# cluster's, has a SPARC band ended by the 20 Hz cap: its SPARC depends on $f_c$ (chapter 8 comes back to
 # this when the robot slows a prototype down).
 
 # %%

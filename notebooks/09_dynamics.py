@@ -16,18 +16,16 @@
 # ---
 
 # %% [markdown]
-# # Beyond velocities: accelerations, torques, execution and reach
+# # Beyond velocities: accelerations and torques
 #
-# [The previous chapter](05_transfer.ipynb) transferred the six prototypes to four arms at the level
-# the paper works at: joint velocities against joint velocity limits. An actuator limits more than
-# its speed, and a command is not yet a motion. This chapter goes beyond the paper. It computes the
-# joint accelerations, jerks and torques the prototypes ask for, checks them against acceleration
-# and torque limits and finds the time scale that satisfies every limit at once, with the limit that
-# binds. It then simulates a controller executing the joint velocity commands and measures what the
-# limits do to the executed motion's PV, SPARC and path, asks across the whole cohort whether
-# smoothness matters for the accelerations a movement needs, and shows how the workspace and inverse
-# kinematics decide what cannot be reached. It closes by answering the paper's second design question
-# again, once acceleration counts.
+# [Chapter 5](05_transfer.ipynb) transferred the six prototypes to four arms at the level the paper
+# works at: joint velocities against joint velocity limits. An actuator limits more than its speed.
+# This chapter goes beyond the paper. It computes the joint accelerations, jerks and torques the
+# prototypes ask for, checks them against acceleration and torque limits and finds the time scale that
+# satisfies every limit at once, with the limit that binds, also for a Puma 560 with a weakened
+# shoulder. It closes by answering the paper's second design question again, once acceleration counts.
+# [Chapter 10](10_execution_and_reach.ipynb) then executes the prototypes in simulation and shows where
+# the arms cannot reach.
 #
 # ```{note}
 # The data are synthetic. The original recordings are not public; the cohort in `data/cohort.csv` was
@@ -37,7 +35,6 @@
 # ```
 
 # %% tags=["hide-input"]
-import textwrap
 
 import numpy as np
 import pandas as pd
@@ -90,17 +87,19 @@ print(
 # same, the tests compare). For the Panda's minimum-norm solution $\dot q = J^+ v$ the exact derivative
 # has one more term, $(I - J^+ J)\, \dot J^\top (J J^\top)^{-1} v$, in the null space of $J$. The jerk,
 # $d\ddot q / dt$, is the same three-point derivative of $\ddot q$, a stated numerical choice.
-# [`sk.joint_dynamics`](#skilllib.robot.joint_dynamics) computes all three per sample and joint, and
-# [`sk.assess`](#skilllib.robot.assess) adds the limits an arm carries (`arm.dynamic_limits`) and the
-# executed motion of the next sections, on every arm at once. The check of [](#eq-qddot) is the plain
-# derivative of $\dot q$ itself.
+# [`sk.joint_dynamics`](#skilllib.robot.joint_dynamics) computes all three per sample and joint, with
+# the limits an arm carries (`arm.qdd_limits`, `arm.tau_limits`); [`sk.assess`](#skilllib.robot.assess)
+# adds the executed motion of chapter 10. The check of [](#eq-qddot) is the plain derivative of
+# $\dot q$ itself.
 
 # %%
-assessed = {
-    name: sk.assess(arm.robot, on_arm[name], arm.dynamic_limits)
+dyn = {
+    name: [
+        sk.joint_dynamics(arm.robot, r, arm.qdd_limits, arm.tau_limits)
+        for r in on_arm[name]
+    ]
     for name, arm in arms.items()
 }
-dyn = {name: [a.dynamics for a in res] for name, res in assessed.items()}
 
 
 def rel_gap(d):
@@ -179,7 +178,7 @@ assert round(panda_jerk, 2) == 0.22, (
 # length of its path; cluster 3 is 0.15 m/s slower than cluster 4 over a 3.4 cm longer path, so with
 # cluster 4's shape it would need 38% less acceleration, yet it needs within 5% of cluster 4's.
 # Cluster 3 is the less smooth of the two: its late dip and second rise (the joint velocity figure of
-# the previous chapter) are fast changes of speed. Jerks reach 590 rad/s³ on Simple6; only the
+# chapter 5) are fast changes of speed. Jerks reach 590 rad/s³ on Simple6; only the
 # Panda's datasheet limits jerk, and the prototypes use at most 22% of those limits.
 # [](#fig-joint-accelerations) shows the accelerations against time.
 
@@ -294,7 +293,7 @@ fig = skf.plot_joint_torques(puma)
 
 # %% [markdown]
 # **Time scaling under every limit.** A uniform stretch by $s$ divides joint velocities by $s$ and
-# accelerations by $s^2$, so the velocity limits ask for the stretch $s_v$ of the previous chapter,
+# accelerations by $s^2$, so the velocity limits ask for the stretch $s_v$ of chapter 5,
 # the largest peak joint velocity over its limit, and the acceleration limits for
 #
 # $$
@@ -434,292 +433,15 @@ assert all(d.limits_hold(d.time_scale) for d in weak_dyn), (
 # does not reduce; the stretch that satisfies every limit is 1.37.
 
 # %% [markdown]
-# ## Executed motion
-#
-# So far the robot's tool follows the prototype by construction: nothing was executed.
-# [`sk.execute`](#skilllib.robot.execute) simulates the arm following each prototype's joint velocity
-# commands with a joint velocity controller at 500 Hz (the rate of a Universal Robots e-Series
-# controller). The commands are interpolated between the 60 Hz samples by a cubic Hermite spline
-# through $\dot q_k$ and $\ddot q_k$; at every tick the command is clipped to the velocity limits, a
-# first-order actuator lag of 100 Hz bandwidth (the default cut-off of the first-order filter libfranka
-# applies to Franka arms' commands, a stand-in for every arm) follows it, and the change of joint
-# velocity per tick is clipped to the acceleration limits. The joint angles integrate the joint
-# velocities; forward kinematics gives the executed tool path, $J(q)\dot q$ its velocity. Torque
-# limits are not simulated (that needs forward dynamics): on the Puma 560, which has no acceleration
-# limit, only the lag acts.
-#
-# The executed speed is measured like the prototype's: at the command's own sample instants. Its PV is
-# the largest of those samples and its SPARC is computed with the run's parameters; for an execution
-# slowed by $s$ the samples are $s/f_s$ apart and the cut-off is scaled to $f_c/s$, which keeps it below
-# their Nyquist frequency and makes a perfect execution return the prototype's SPARC exactly
-# (measurement (a) of the previous chapter's time-scaling section). The tracking error is the distance
-# of the executed tool point from the prototype's path at those instants.
-
-# %%
-ex_rows = []
-for res in assessed.values():
-    for a in res:
-        e, es, c = a.executed, a.executed_scaled, a.transfer.cluster
-        ex_rows.append(
-            {
-                "robot": a.transfer.robot,
-                "cluster": c,
-                "binding": a.dynamics.binding_limit or "-",
-                "SPARC": protos.at[c, "sparc"],
-                "executed SPARC": e.sparc,
-                "slowed SPARC": es.sparc,
-                "PV (m/s)": protos.at[c, "pv"],
-                "executed PV (m/s)": e.pv,
-                "error (mm)": 1000 * e.max_tracking_error_m,
-                "slowed error (mm)": 1000 * es.max_tracking_error_m,
-                "slowed: ticks clipped": es.saturated_fraction,
-            }
-        )
-executed = pd.DataFrame(ex_rows).set_index(["robot", "cluster"])
-executed["SPARC change"] = executed["executed SPARC"] - executed["SPARC"]
-executed["slowed SPARC change"] = executed["slowed SPARC"] - executed["SPARC"]
-bound = executed[executed["binding"] != "-"]
-free = executed[executed["binding"] == "-"]
-centre_gap = fit.centres["sparc"].sort_values().diff().max()
-change = bound["SPARC change"]
-print(f"where a limit binds ({len(bound)} prototype-arm pairs): SPARC change ", end="")
-print(f"{change.min():+.3f} to {change.max():+.3f},")
-print(
-    f"tracking error up to {bound['error (mm)'].max():.0f} mm; slowed: |change| up to ",
-    end="",
-)
-print(f"{bound['slowed SPARC change'].abs().max():.3f}, ", end="")
-print(f"error up to {bound['slowed error (mm)'].max():.1f} mm")
-print(f"where none binds ({len(free)}): ", end="")
-print(f"|SPARC change| up to {free['SPARC change'].abs().max():.3f}, ", end="")
-print(f"error up to {free['error (mm)'].max():.1f} mm;")
-print(f"largest gap between neighbouring cluster centres in SPARC {centre_gap:.3f}")
-executed.loc["Simple6"].round(3)
-
-# %% tags=["remove-cell"]
-# checks of the claims above (hidden on the site; nbmake fails when one stops holding)
-s6x = executed.loc["Simple6"]
-assert (s6x.loc[[2, 3, 4, 5], "SPARC change"] < -0.02).all(), (
-    "text: 'on Simple6 the executed SPARC is lower for every prototype the limit clips'"
-)
-assert round(s6x["SPARC change"].min(), 2) == -0.13, "text: 'by up to 0.13'"
-assert s6x.index[s6x["SPARC change"] < -centre_gap].tolist() == [3, 5], (
-    "text: 'for clusters 3 and 5 by more than the largest gap between cluster centres'"
-)
-assert round(s6x.at[5, "executed PV (m/s)"], 2) == 0.84, "text: '0.84 of its 1.38 m/s'"
-assert round(s6x.at[5, "error (mm)"]) == 64, (
-    "text: 'cluster 5 is 64 mm behind its path'"
-)
-assert (change > 0).sum() == 2 and round(change.max(), 2) == 0.02, (
-    "text: 'on the other arms it rises twice, by up to 0.02'"
-)
-assert round(bound["error (mm)"].max()) == 89, (
-    "text: 'the tool falls behind by up to 89 mm'"
-)
-assert bound["slowed SPARC change"].abs().max() < 0.004, (
-    "text: 'slowed: SPARC within 0.004'"
-)
-assert bound["slowed error (mm)"].max() < 2, (
-    "text: 'slowed: path within 2 mm, on every arm'"
-)
-assert free["SPARC change"].abs().max() < 0.004 and free["error (mm)"].max() < 2.5, (
-    "text: 'where no limit binds, within 0.004 and 2.5 mm'"
-)
-assert round(executed["slowed: ticks clipped"].max(), 2) == 0.18, (
-    "text: 'up to 18% of the ticks are still clipped'"
-)
-
-# %% [markdown]
-# Where a limit binds, executing the prototype as recorded changes the smoothness it was chosen for. On
-# Simple6 the executed SPARC is lower for every prototype the acceleration limit clips (clusters 2 to 5),
-# by up to 0.13, for clusters 3 and 5 by more than the largest gap between neighbouring cluster centres:
-# executed, they would belong to a less smooth cluster. The clipped accelerations turn the bell into
-# straight ramps ([](#fig-executed-speed)), and the tool falls behind: cluster 5 reaches 0.84 of its
-# 1.38 m/s and is 64 mm behind its path; on the UR5 the tool falls behind by up to 89 mm. The executed
-# SPARC is not always lower: on the other arms it rises twice, by up to 0.02. Slowed by the time scale of
-# every limit, each execution keeps the prototype's SPARC to within 0.004 and its path to within 2 mm,
-# on every arm, although up to 18% of the controller ticks are still clipped: the Hermite command can ask
-# for a little more acceleration between two samples than at either of them, where the time scale was
-# computed. Where no limit binds, the lag and the integration of the commands alone leave SPARC within
-# 0.004 and the path within 2.5 mm.
-
-# %%
-#| label: fig-executed-speed
-#| caption: "Synthetic cohort. Commanded and executed tool speed of Simple6 for each prototype: the prototype's speed at its samples (dots), the simulated execution at 500 Hz as recorded (red; velocity and acceleration limits, 100 Hz actuator lag) and the execution slowed by the time scale s of every limit, drawn on the recorded time axis (t / s, speed × s; dashed), which lies on the dots. Titles: SPARC of the prototype, of the execution as recorded and slowed."
-fig = skf.plot_executed_speed(assessed["simple6"])
-
-# %% [markdown]
-# ## Smoothness and acceleration across the cohort
-#
-# Six prototypes are few for the question whether smoothness matters for acceleration. Across all 680
-# selected trials the hand's peak acceleration (the same derivative of the velocity) can be related to
-# PV, the segment's duration and SPARC; on Simple6 the peak joint acceleration follows the hand's at
-# about 1 rad/s² per m/s², so this is the question of the acceleration limit's stretch $s_a$.
-
-# %%
-cohort = sel[["participant", "trial", "pv", "sparc", "duration"]].copy()
-trials = (sk.segment(rec, p, t) for p, t in zip(sel["participant"], sel["trial"]))
-peak_acc = [np.linalg.norm(sk.derivative(s.vel, s.t), axis=1).max() for s in trials]
-cohort["log_peak_acc"] = np.log(peak_acc)
-cohort["log_pv"], cohort["log_duration"] = (
-    np.log(cohort["pv"]),
-    np.log(cohort["duration"]),
-)
-logs = ["log_pv", "log_duration"]
-r2 = sk.variance_explained(cohort, "log_peak_acc", logs)["all"]
-r2_sparc = sk.variance_explained(cohort, "log_peak_acc", [*logs, "sparc"])["all"]
-plain_r = cohort["sparc"].corr(cohort["log_peak_acc"])
-partial_r = sk.partial_correlation(cohort, "sparc", "log_peak_acc", logs)
-print(f"{len(cohort)} selected trials: r(SPARC, ln peak a) = {plain_r:+.2f};")
-print(f"with ln PV and ln duration regressed out {partial_r:+.2f};")
-print(f"R² of ln peak a on ln PV, ln duration {r2:.3f}, with SPARC {r2_sparc:.3f}")
-
-# %% tags=["remove-cell"]
-# checks of the claims above (hidden on the site; nbmake fails when one stops holding)
-assert len(cohort) == 680 and round(plain_r, 2) == 0.44, (
-    "text: '680 trials; plainly, smoother trials accelerate more (r = 0.44)'"
-)
-assert abs(partial_r + 0.23) < 0.01, (
-    "text: 'at a given PV and duration, the less smooth accelerate more (r = -0.23)'"
-)
-assert round(r2, 3) == 0.852 and round(r2_sparc, 3) == 0.859, (
-    "text: 'PV and duration explain 85.2%; with SPARC 85.9%'"
-)
-
-# %% [markdown]
-# Plainly, smoother trials accelerate *more* (r = 0.44): in this cohort the smoother trials are the
-# faster ones. At a given PV and duration the sign turns: the less smooth trials accelerate more
-# (partial r = -0.23), as cluster 3 against cluster 4 showed. But the effect is small: PV and duration
-# explain 85.2% of the variance of the log peak acceleration, and SPARC raises that to 85.9%, less than
-# one percentage point.
-
-# %% [markdown]
-# ## Reach and IK failures: flags, never silent NaN
-#
-# Nothing guarantees that a path is reachable, and an IK search that fails does not show that it is not.
-# The transfer therefore tells the two apart:
-#
-# - **unreachable**: the target lies outside the arm's *reach shell*
-#   ([`sk.reach_shell`](#skilllib.robot.reach_shell)), the range of distances from the
-#   shoulder (where the axes of joints 1 and 2 meet) that its tool point can take within the joint
-#   limits. Rotations about those two axes do not change the distance, so it depends on
-#   the other joints only; its range is found numerically and checked against closed forms (Simple6: 0 to
-#   2 m, its two 1 m links; Puma 560: 0.877 m). Such a target is not searched.
-# - **IK failure**: inside the shell, the searches of [`sk.solve_ik`](#skilllib.robot.solve_ik) all
-#   failed: Levenberg-Marquardt from
-#   the previous solution, then with random restarts, Gauss-Newton with the pseudo-inverse, and
-#   Levenberg-Marquardt with Sugihara's damping, each with restarts drawn within the joint limits. The
-#   flag says why the best attempt was rejected and gives $\kappa(J)$ at the last solved sample.
-#
-# To show both, the fastest prototype is blown up in space, every position and velocity multiplied by
-# the factor that makes its descent 2 m, and transferred to Simple6. From the tool point at (1, 0, 0) m,
-# 1 m in front of the shoulder, the arm's 2 m reach ends at a descent of $\sqrt{2^2 - 1^2} \approx
-# 1.73$ m for a purely vertical path; the blown-up path drifts too, so the table gives each flagged
-# sample's distance from the shoulder. The threshold on $\kappa$ is an argument too, lowered here to 5 to
-# show the ill-conditioned flag as the arm stretches out.
-
-# %%
-seg, simple6 = segs[fastest], arms["simple6"]
-blow_up = 2.0 / protos.at[fastest, "descent"]
-pos, vel = seg.pos * blow_up, seg.vel * blow_up
-bad = sk.transfer(simple6, seg.time, pos, vel, cond_threshold=5.0, cluster=fastest)
-shell = sk.reach_shell(simple6.robot)
-flags = pd.DataFrame(bad.flags).set_index("sample")
-flags.insert(0, "depth (m)", -(bad.x_base[flags.index, 2] - bad.x_base[0, 2]))
-flags.insert(1, "from the shoulder (m)", shell.distance(bad.x_base[flags.index]))
-flags.insert(2, "cond J", bad.cond_j[flags.index])
-nan_rows = np.flatnonzero(np.isnan(bad.qd).any(axis=1)).tolist()
-kind = {
-    k: [f["sample"] for f in bad.flags if f["reason"].startswith(k)]
-    for k in ("unreachable", "ik_failed")
-}
-beyond = np.flatnonzero(shell.distance(bad.x_base) > shell.r_max).tolist()
-at = shell.shoulder.round(9) + 0.0
-print(
-    f"Simple6 reach shell: {shell.r_min:g} to {shell.r_max:g} m "
-    f"from the shoulder at {at}"
-)
-print(
-    f"cluster {fastest} x {blow_up:.2f}: {len(seg.t)} samples, "
-    f"{len(bad.flags)} flagged;"
-)
-print(f"samples beyond 2 m: {beyond}; unreachable: {kind['unreachable']};")
-print(f"IK failures: {kind['ik_failed']}; NaN qd: {nan_rows}")
-flags.round(3)
-
-# %% tags=["remove-cell"]
-# checks of the claims above (hidden on the site; nbmake fails when one stops holding)
-assert shell.r_min == 0 and abs(shell.r_max - 2) < 1e-9, "text: 'Simple6: 0 to 2 m'"
-assert kind["unreachable"] == beyond == nan_rows and kind["ik_failed"] == [], (
-    "text: 'unreachable exactly the samples farther than 2 m, only they hold NaN'"
-)
-ill = [f["sample"] for f in bad.flags if f["reason"].startswith("ill_conditioned")]
-assert ill and max(ill) < min(beyond) and np.isfinite(bad.qd[ill]).all(), (
-    "text: 'ill-conditioned ones on the way, flagged but kept'"
-)
-assert flags.loc[beyond, "depth (m)"].min() > 1.73, (
-    "text: 'reach ends at a descent of 1.73 m'"
-)
-assert bad.ik_residual_m[: min(beyond)].max() <= sk.IK_RESIDUAL_TOL_M, (
-    "text: 'every sample inside the reach solved'"
-)
-
-# %% [markdown]
-# Simple6 flags as unreachable exactly the samples farther than 2 m from its shoulder, and only they
-# hold NaN; every sample inside the reach is solved to within $10^{-6}$ m, including the ill-conditioned
-# ones near the stretched elbow, which are flagged but kept. The Panda shows the other kind. Blown up to a
-# 1 m descent, the same prototype leaves its 0.947 m reach only at the end, but two samples before that
-# cannot be reached with the tool's orientation held inside the joint limits:
-
-# %%
-panda = arms["panda"]
-blow_up_panda = 1.0 / protos.at[fastest, "descent"]
-pos, vel = seg.pos * blow_up_panda, seg.vel * blow_up_panda
-bad_panda = sk.transfer(panda, seg.time, pos, vel, cluster=fastest)
-panda_shell = sk.reach_shell(panda.robot)
-panda_flags = pd.DataFrame(bad_panda.flags).set_index("sample")
-from_shoulder = panda_shell.distance(bad_panda.x_base[panda_flags.index])
-panda_flags.insert(0, "from the shoulder (m)", from_shoulder)
-print(f"Panda reach shell: up to {panda_shell.r_max:.3f} m from the shoulder")
-print(textwrap.fill(panda_flags.iloc[0]["reason"], 88))
-panda_flags.round(3)
-
-# %% tags=["remove-cell"]
-# checks of the claims above (hidden on the site; nbmake fails when one stops holding)
-kinds_panda = panda_flags["reason"].str.split(":").str[0]
-assert kinds_panda.tolist() == ["ik_failed"] * 2 + ["unreachable"] * 3, (
-    "text: 'two IK failures, then unreachable'"
-)
-assert round(panda_shell.r_max, 3) == 0.947, "text: 'its 0.947 m reach'"
-failed = kinds_panda == "ik_failed"
-assert (panda_flags.loc[failed, "from the shoulder (m)"] < panda_shell.r_max).all(), (
-    "text: 'the IK failures lie inside the reach shell'"
-)
-assert (panda_flags.loc[~failed, "from the shoulder (m)"] > panda_shell.r_max).all(), (
-    "text: 'leaves its reach only at the end'"
-)
-assert all(
-    "outside the joint limits" in r for r in panda_flags.loc[failed, "reason"]
-), "text: 'the best attempt reaches the target but outside the joint limits'"
-
-# %% [markdown]
-# The IK failures lie inside the reach shell; their flag reports that the best attempt hits the target
-# with the right orientation but outside the joint limits (of $q_2$ and $q_4$), and gives $\kappa(J)$ at
-# the last solved sample. The same flags, with sample and reason, go into `results.json` when the
-# pipeline runs, and the joint velocity figure marks flagged samples with a red cross. A time scale
-# computed from such a result covers the solved samples only; slowing down cannot repair a path out of
-# reach, and such a path is not executed.
-
-# %% [markdown]
 # ## Summary
 #
 # The verdicts in one table: for each arm, how many of the prototypes can be executed as recorded and
 # the largest time scale any of them needs, at the velocity limits alone (the paper's question) and at
-# every limit; for Simple6 also under the strict 0.6 rad/s limit of the previous chapter.
+# every limit; for Simple6 also under the strict 0.6 rad/s limit of chapter 5.
 
 # %%
 STRICT = 0.6  # rad/s, on every joint
-strict_arm = simple6.with_limits(qd_max=STRICT)
+strict_arm = arms["simple6"].with_limits(qd_max=STRICT)
 strict_dyn = [
     sk.joint_dynamics(
         strict_arm.robot, sk.transfer(strict_arm, s, cluster=c), strict_arm.qdd_limits
@@ -771,32 +493,23 @@ assert summary["largest s, every limit"].round(2).tolist()[:4] == [
 ], "text: 'the stretches reach 1.96, 3.13 and 1.72'"
 
 # %% [markdown]
-# The previous chapter answered the paper's two design questions at the velocity level. Once
-# acceleration, torque and execution count, the answers change as follows.
+# Chapter 5 answered the paper's two design questions at the velocity level. Once acceleration and
+# torque count, the answer to the second changes as follows; chapter 10 answers the first again, once
+# the prototypes are executed.
 #
-# 1. **Which aspect of human motor control can be implemented?** The speed profile, and with it the
-#    skill features, only within every limit of the arm. Executed by a simulated controller, a
-#    prototype that no limit clips keeps its SPARC to within 0.004 and its path to within 2.5 mm. One
-#    that a limit clips does not: executed as recorded, the clipped accelerations lower SPARC by up to
-#    0.13 on Simple6, more than the largest gap between neighbouring cluster centres, and leave the
-#    tool up to 89 mm behind its path (UR5). Slowed by the time scale of every limit, each of them
-#    keeps the prototype's SPARC to within 0.004 and its path to within 2 mm. A path that leaves the
-#    arm's reach, or that IK cannot follow within the joint limits, is flagged and not executed.
-# 2. **To what extent do human performance parameters match the robot's actuators?** At the joint
-#    velocity limits alone, Simple6 and the Puma 560 execute all six prototypes as recorded, the UR5
-#    five and the Panda three; under the strict 0.6 rad/s Simple6 executes only the slowest, and the
-#    velocity binds again. Once acceleration counts, the humans' movements match the actuators much
-#    less: at the acceleration limits the book assumes, Simple6 executes two of the six as recorded,
-#    the UR5 none and the Panda one, acceleration binds wherever a prototype must be slowed, and the
-#    stretches reach 1.96, 3.13 and 1.72; the Puma 560, limited by its torques, executes all six, at up
-#    to 90% of its shoulder's torque. **Does SPARC matter for feasibility once acceleration counts?** A
-#    little. The acceleration a prototype needs, and with it the stretch, still follows its peak speed
-#    and duration (85.2% of the variance of the peak acceleration across the 680 selected trials); at a
-#    given PV and duration the less smooth trials need more acceleration (partial r = -0.23), and SPARC
-#    explains less than one more percentage point. Among the prototypes, cluster 3 needs within 5% of
-#    cluster 4's peak acceleration although its shape, at its speed, would ask for 38% less. SPARC
-#    matters more for what the limits do to a prototype executed anyway: the smoothness it was chosen
-#    for is what the clipping changes.
+# **To what extent do human performance parameters match the robot's actuators?** At the joint
+# velocity limits alone, Simple6 and the Puma 560 execute all six prototypes as recorded, the UR5 five
+# and the Panda three; under the strict 0.6 rad/s Simple6 executes only the slowest, and the velocity
+# binds again. Once acceleration counts, the humans' movements match the actuators much less: at the
+# acceleration limits the book assumes, Simple6 executes two of the six as recorded, the UR5 none and
+# the Panda one, acceleration binds wherever a prototype must be slowed, and the stretches reach 1.96,
+# 3.13 and 1.72; the Puma 560, limited by its torques, executes all six, at up to 90% of its shoulder's
+# torque. With a weaker shoulder the torque binds instead, and gravity makes its stretch larger than a
+# $1/s^2$ law predicts. **Does SPARC matter for feasibility once acceleration counts?** Among the
+# prototypes, a little: the acceleration a prototype needs, and with it the stretch, still follows its
+# peak speed, but cluster 3 needs within 5% of cluster 4's peak acceleration although its shape, at its
+# speed, would ask for 38% less, and so almost the same stretch. Chapter 10 asks the same across the
+# whole cohort, and what the limits do to the smoothness of a prototype executed anyway.
 #
 # The limits are assumptions of the book (the velocity limits of Simple6 and the Puma 560, the
 # acceleration limits of Simple6 and the UR5), manufacturer's values (the UR5's and the Panda's

@@ -25,7 +25,7 @@
 # the sampling rate from the time stamps and repairs jitter, why it differentiates over a window of
 # fixed duration, how it low-pass filters noisy positions at the cut-off of Winter's residual analysis,
 # and what the noise and the filter do to the movement onset, PV and SPARC. The previous chapter,
-# [Your recordings](11_your_data.ipynb), shows how to run the pipeline on your files; the rules here are
+# [Running the pipeline](12_running_the_pipeline.ipynb), shows how to run it on your files; the rules here are
 # those of [the input formats](../docs/inputs.md) (*Time stamps*) and of `--lowpass` in
 # [the command](../docs/cli.md).
 #

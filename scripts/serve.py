@@ -26,7 +26,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 BUILD_SCRIPT = ROOT / "scripts" / "build_site.py"
 WATCH_DIRS = ("notebooks", "images", "data", "skilllib", "scripts", "theme")
-SKIP = {"node_modules", "__pycache__", ".ipynb_checkpoints", "_build", "_your_data", "_out"}
+SKIP = {"node_modules", "__pycache__", ".ipynb_checkpoints", "_build", "_your_data", "_running_the_pipeline", "_out"}
 RELOAD = b"""<script>(function () { var id = null; setInterval(function () {
   fetch('/__build').then(function (r) { return r.json(); }).then(function (b) {
     if (id === null) id = b.id; else if (b.id !== id) location.reload(); }).catch(function () {}); }, 1000); })();

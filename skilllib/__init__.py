@@ -207,7 +207,6 @@ __getattr__, __dir__, _names = _lazy.attach(
             "JointDynamics",
             "LIMIT_NAMES",
             "limits_text",
-            "minimum_jerk_descent",
             "next_band_frequency",
             "PANDA_QD_LIMITS",
             "PANDA_QDDD_LIMITS",

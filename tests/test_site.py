@@ -749,8 +749,8 @@ def test_dark_mode_redefines_every_colour():
 
 
 def _public_api(package: str = "skilllib") -> dict[str, object]:
-    """Every public function and class of every public module, found independently of
-    scripts/api_page.py: module path -> object."""
+    """Every public function and class of every public module (a sub-package's face included), found
+    independently of scripts/api_page.py: module path -> object."""
     import importlib
     import inspect
     import pkgutil
@@ -761,11 +761,14 @@ def _public_api(package: str = "skilllib") -> dict[str, object]:
         if any(part.startswith("_") for part in info.name.split(".")[1:]):
             continue
         module = importlib.import_module(info.name)
-        for name, obj in vars(module).items():
+        names = getattr(module, "__all__", None) or list(vars(module))  # a lazy face lists its names
+        for name in names:
+            obj = getattr(module, name, None)
             if (
                 not name.startswith("_")
                 and (inspect.isfunction(obj) or inspect.isclass(obj))
-                and obj.__module__ == info.name
+                # defined in the module, or in a private module behind the sub-package's face
+                and (obj.__module__ == info.name or obj.__module__.startswith(f"{info.name}._"))
             ):
                 found[f"{info.name}.{name}"] = obj
     return found

@@ -48,7 +48,6 @@ __getattr__, __dir__, __all__ = _lazy.attach(
             "EXP_TO_BASE",
             "IK_RESIDUAL_TOL_M",
             "JOINT_LIMIT_TOL_RAD",
-            "minimum_jerk_descent",
             "QD_LIMIT_RTOL",
             "SINGULAR_COND",
             "time_scale_factor",

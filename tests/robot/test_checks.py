@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from robot_paths import minimum_jerk_descent
 
 import skilllib as sk
 
@@ -19,7 +20,7 @@ def test_within_joint_limits_takes_an_arm_or_its_model():
 
 def test_tool_velocity_error_is_rounding_error_for_a_transfer_and_skips_unsolved_samples():
     arm = sk.get_robot("simple6")
-    t, pos, vel = sk.minimum_jerk_descent(amplitude=0.2, peak_speed=0.8)
+    t, pos, vel = minimum_jerk_descent(amplitude=0.2, peak_speed=0.8)
     r = sk.transfer(arm, t, pos, vel)
     assert sk.tool_velocity_error(arm, r) < 1e-12
     r.qd[2] += 0.1  # a wrong joint velocity shows
@@ -30,7 +31,7 @@ def test_tool_velocity_error_is_rounding_error_for_a_transfer_and_skips_unsolved
 
 def test_tool_velocity_error_needs_the_commanded_velocities():
     arm = sk.get_robot("simple6")
-    r = sk.transfer(arm, *sk.minimum_jerk_descent())
+    r = sk.transfer(arm, *minimum_jerk_descent())
     r.v_base = None
     with pytest.raises(ValueError, match="v_base"):
         sk.tool_velocity_error(arm, r)

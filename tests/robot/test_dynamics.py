@@ -10,6 +10,7 @@ import json
 import numpy as np
 import pytest
 import roboticstoolbox as rtb
+from robot_paths import minimum_jerk_descent
 
 from skilllib.robot import (
     EXP_TO_BASE,
@@ -23,7 +24,6 @@ from skilllib.robot import (
     jacobian_dot,
     joint_accelerations,
     joint_dynamics,
-    minimum_jerk_descent,
     simple6,
     transfer,
 )

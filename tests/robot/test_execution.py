@@ -8,6 +8,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from robot_paths import minimum_jerk_descent
 
 from skilllib.robot import (
     ACTUATOR_BANDWIDTH_HZ,
@@ -18,7 +19,6 @@ from skilllib.robot import (
     execute,
     get_robot,
     joint_dynamics,
-    minimum_jerk_descent,
     simple6,
     transfer,
     transfer_block,

@@ -15,6 +15,7 @@ import pytest  # noqa: E402
 import roboticstoolbox as rtb  # noqa: E402
 from hypothesis import given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
+from robot_paths import minimum_jerk_descent  # noqa: E402
 from roboticstoolbox.robot.IK import IKSolution  # noqa: E402
 from scipy.integrate import cumulative_trapezoid  # noqa: E402
 from scipy.optimize import brentq  # noqa: E402
@@ -33,7 +34,6 @@ from skilllib.robot import (
     apply_time_scale,
     default_pose,
     get_robot,
-    minimum_jerk_descent,
     simple6,
     time_scale_factor,
     to_base_frame,

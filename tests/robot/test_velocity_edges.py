@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 import pytest
+from robot_paths import minimum_jerk_descent
 from roboticstoolbox.robot.IK import IKSolution
 from scipy.spatial.transform import Rotation
 
@@ -22,7 +23,6 @@ from skilllib.robot import (
     TransferResult,
     apply_time_scale,
     default_pose,
-    minimum_jerk_descent,
     pose_residual,
     reach_shell,
     simple6,
