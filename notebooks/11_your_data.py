@@ -219,7 +219,7 @@ assert check.fs > sk.CohortModel().fs == 60, (
 #
 # Before you run anything, look at the trials as the pipeline sees them.
 # [`sk.trial_features`](#skilllib.features.trial_features) segments every trial and gives its status;
-# [`skf.plot_trials_by_participant`](#skilllib.figures.plot_trials_by_participant) draws the height y
+# [`skf.plot_trials_by_participant`](#skilllib.figures.experiment.plot_trials_by_participant) draws the height y
 # and the speed of every valid trial against time from contact, the figure the command also writes
 # (`trials_by_participant`, chapter 12). It shows at once whether the export is right: y should fall
 # to the contact surface and stay there; speed should rise from rest and end at contact. For the
