@@ -10,7 +10,7 @@ Steps:
 1. Stage: copy myst.yml (its `site: template` made absolute), the pages of the toc and the files they
    may refer to into _build/site-src/. Each notebook of the toc is executed there with nbclient (kernel
    python3, cwd = the notebook's own folder, so `../data/...` works); the committed notebooks are
-   only read. Chapter k of the toc (the landing page is not counted) numbers its figures, tables and
+   only read. The k-th notebook of the toc (markdown pages are not counted) numbers its figures, tables and
    equations k.1, k.2, ... unless it sets `numbering` itself. A notebook paired with a percent script
    (NN_slug.py beside it) offers both for download.
    Executed notebooks are cached in BUILD_DIR/cache/, keyed on the chapter's code cells, the kernel
@@ -454,9 +454,12 @@ def build(
     kernel_environment()
     cache = ExecutionCache(build_dir / "cache" / "exec", inputs_digest(project)) if (execute or executed) else None
     reused = []
-    for k, rel in enumerate(files):
+    n_chapters = 0  # the notebooks are the numbered chapters; the landing and reference pages are not
+    for rel in files:
         src, dst = project / rel, staging / rel
-        chapter = k if (chapter_numbers and k > 0) else None
+        is_chapter = chapter_numbers and rel.endswith(".ipynb")
+        n_chapters += is_chapter
+        chapter = n_chapters if is_chapter else None
         if rel in GENERATED_PAGES and not src.is_file():
             generate_page(project, rel, dst, build_dir / "cache")
             continue
