@@ -243,6 +243,8 @@ __getattr__, __dir__, _names = _lazy.attach(
             "survey_summary",
         ],
         "pipeline": [
+            "check_output",
+            "MANIFEST",
             "Analysis",
             "analyse",
             "read_trials",

@@ -12,7 +12,7 @@ __getattr__, __dir__, __all__ = _lazy.attach(
     submod_attrs={
         "_analysis": ["Analysis", "analyse"],
         "_cli": ["main"],
-        "_output": ["output_folder", "OutputError", "RUN_FILES"],
+        "_output": ["check_output", "MANIFEST", "output_folder", "OutputError", "RUN_FILES"],
         "_run": ["DEFAULT_DATA", "OptionError", "run"],
         "_summary": ["summary_lines"],
         "_trials_file": ["read_trials", "TRIALS_IN_JSON_MAX"],

@@ -5,7 +5,7 @@ Exit status: 0 on success; 2 for a file that cannot be read, a bad option or an 
 be used (one line on stderr, no traceback); 3 when the run finished but too few trials were selected to
 find prototypes (results.json is written, with every trial); 1 for an unexpected error (one line;
 ``--debug`` shows the traceback); 130 when interrupted (Ctrl-C), at any point; 141 when standard output
-was closed early (as ``| head``), quietly.
+was closed early (as ``| head``), quietly; 143 when terminated (SIGTERM), cleaned up as after Ctrl-C.
 
 Start-up is kept light: ``--help`` and ``--version`` import neither pandas nor scikit-learn,
 roboticstoolbox or matplotlib; those are imported when a run starts.
@@ -15,7 +15,9 @@ from __future__ import annotations
 
 import argparse
 import os
+import signal
 import sys
+import threading
 from collections.abc import Sequence
 
 from .. import __version__
@@ -275,6 +277,15 @@ def _run(args: argparse.Namespace) -> int:
     return 0 if result.prototypes is not None else 3
 
 
+class _Terminated(BaseException):
+    """SIGTERM, raised where the run is, so that it cleans up as after Ctrl-C (a BaseException: no
+    ``except Exception`` on the way swallows it)."""
+
+
+def _on_sigterm(signum: int, frame: object) -> None:
+    raise _Terminated
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """The command line ``python -m skilllib run ...`` (the ``skilllib`` command): parse, run, print a summary.
 
@@ -290,13 +301,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     -------
     int
         The exit status: 0 success, 1 unexpected error, 2 the user's error, 3 too few selected trials for
-        prototypes, 130 interrupted, 141 standard output closed early (dimensionless).
+        prototypes, 130 interrupted (Ctrl-C), 141 standard output closed early, 143 terminated (SIGTERM)
+        (dimensionless).
 
     Raises
     ------
     SystemExit
         From argparse, for ``--help``, ``--version`` (status 0) or arguments it cannot parse (status 2).
     """
+    in_main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGTERM, _on_sigterm) if in_main_thread else None
     try:
         args = _parser().parse_args(argv)
         code = _run(args)
@@ -305,7 +319,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("error: interrupted", file=sys.stderr)
         return 130
+    except _Terminated:  # the output folder is left as it was, as after Ctrl-C
+        print("error: terminated", file=sys.stderr)
+        return 143
     except BrokenPipeError:  # stdout closed early (| head): end quietly, as Unix tools do
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return 141
+    finally:
+        if in_main_thread:
+            signal.signal(signal.SIGTERM, previous)

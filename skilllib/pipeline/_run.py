@@ -37,7 +37,7 @@ from ..robot import (
     transfer_block,
 )
 from ..smoothness import DEFAULT_AMP_TH, DEFAULT_FC, DEFAULT_PADLEVEL
-from ._output import output_folder, write_json_atomic
+from ._output import check_output, output_folder, write_json_atomic
 from ._trials_file import in_json, trials_block, write_trials
 
 #: The book's synthetic cohort (default input), shipped with skilllib (:mod:`skilllib.datasets`).
@@ -319,10 +319,8 @@ def run(
             lowpass = parse_lowpass(lowpass)
         except ValueError as e:
             raise OptionError(str(e)) from None
-    if out is not None:
-        out = Path(out)
-        if out.exists() and not out.is_dir():
-            raise OptionError(f"{out}: exists and is not a folder (--out names the folder for the results)")
+    if out is not None:  # everything about the output folder is checked before anything is computed
+        out = check_output(out, inputs=(data,) if isinstance(data, (str, Path)) else ())
     features = None
     if workers or scheduler:
         from ..features import cluster_features

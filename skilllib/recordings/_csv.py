@@ -4,6 +4,9 @@ The first step of reading recordings (:func:`skilllib.recordings.read_recordings
 so that identifiers stay text exactly as written, and line numbers count physical lines of the file (a
 quoted cell spanning lines counts all of them), so that a message names the line an editor shows.
 Compressed files are opened as pandas opens them (``.gz``, ``.bz2``, ``.zip``, ``.xz``, ``.zst``).
+A row with more or fewer fields than the header is refused (:func:`check_alignment`), never shifted: a
+trailing comma on every line, the header's included, lines up; on the data rows only, the message says
+to remove it (dropping an extra last field would guess which name is missing).
 :class:`DataFormatError` is defined here and re-exported by :mod:`skilllib.recordings`.
 """
 
@@ -64,6 +67,78 @@ def record_lines(text: str) -> np.ndarray:
     return np.asarray(starts[1:], dtype=np.int64)
 
 
+def _is_blank(cells: list[str]) -> bool:
+    return len(cells) <= 1 and not "".join(cells).strip()
+
+
+def _record_widths(text: str) -> tuple[np.ndarray, np.ndarray, list[str]]:
+    """Fields of each record of a CSV text (header first), the record's first physical line, and the
+    header's cells. Blank records (only spaces) count 0 fields. Counted as pandas reads (separator ',',
+    quotes, spaces after a separator skipped)."""
+    if '"' in text:
+        reader = csv.reader(io.StringIO(text), skipinitialspace=True)
+        widths, starts, end, header = [], [], 0, []
+        for cells in reader:
+            header = header or cells
+            widths.append(0 if _is_blank(cells) else len(cells))
+            starts.append(end + 1)
+            end = reader.line_num
+        return np.asarray(widths, dtype=np.int64), np.asarray(starts, dtype=np.int64), header
+    raw = np.frombuffer(text.encode("utf-8"), dtype=np.uint8)
+    ends = np.flatnonzero(raw == ord("\n"))
+    if len(raw) and raw[-1] != ord("\n"):
+        ends = np.append(ends, len(raw))
+    begins = np.concatenate(([0], ends[:-1] + 1))
+    commas = np.flatnonzero(raw == ord(","))
+    widths = np.searchsorted(commas, ends) - np.searchsorted(commas, begins) + 1
+    lines = text.split("\n", 1)
+    header = lines[0].split(",")
+    one = np.flatnonzero(widths == 1)
+    if widths[0] == 1 and raw[: ends[0]].tobytes().strip():  # one column: blank lines line up anyway
+        one = one[:0]
+    for i in one:  # blank lines (rare): 0 fields
+        if not raw[begins[i] : ends[i]].tobytes().strip():
+            widths[i] = 0
+    return widths, np.arange(1, len(widths) + 1), header
+
+
+def _last_cells_empty(text: str, rows: np.ndarray) -> bool:
+    """Whether the last field of every record ``rows`` (indices after the header) is empty."""
+    if '"' in text:
+        records = [cells for cells in csv.reader(io.StringIO(text), skipinitialspace=True)]
+        return all(not records[i][-1].strip() for i in rows)
+    lines = text.split("\n")
+    return all(lines[i].rstrip().endswith(",") for i in rows)
+
+
+def check_alignment(path: Path, text: str) -> None:
+    """DataFormatError unless every record of the CSV ``text`` has as many fields as its header (blank
+    lines aside); the message names the first other line, both counts, and the fix of a trailing comma
+    on the data rows only or on the header only. A trailing comma on every line, the header's included,
+    lines up (pandas names that empty column ``Unnamed: k``; it is not one the recordings use)."""
+    widths, lines, header = _record_widths(text)
+    if len(widths) < 2 or widths[0] == 0:  # a header alone, or blank lines before it: read_csv says so
+        return
+    h = int(widths[0])
+    rows = np.flatnonzero(widths[1:] > 0) + 1
+    bad = rows[widths[rows] != h]
+    if not len(bad):
+        return
+    first, w = int(bad[0]), int(widths[bad[0]])
+    # pandas' own words for a row too long (kept: the message users and tests know), for short rows too
+    where = f"{path}: not a valid CSV table: Expected {h} fields in line {lines[first]}, saw {w}"
+    if len(bad) == len(rows) and np.all(widths[rows] == h + 1) and _last_cells_empty(text, rows):
+        raise DataFormatError(
+            f"{where}: every data row ends with a separator the header lacks, which would shift the columns: "
+            "remove the trailing comma from the data rows (or add one to the header)"
+        )
+    if len(bad) == len(rows) and np.all(widths[rows] == h - 1) and not header[-1].strip():
+        raise DataFormatError(
+            f"{where}: the header ends with a separator the data rows lack: remove the trailing comma from line 1"
+        )
+    raise DataFormatError(where)
+
+
 def read_table(path: str | Path) -> tuple[pd.DataFrame, np.ndarray]:
     """A CSV file as a table of text cells and the physical line of each row.
 
@@ -90,6 +165,7 @@ def read_table(path: str | Path) -> tuple[pd.DataFrame, np.ndarray]:
     text = _read_text(path)
     if not text.strip():
         raise DataFormatError(f"{path}: file is empty")
+    check_alignment(path, text)
     try:
         df = pd.read_csv(
             io.StringIO(text), dtype=str, keep_default_na=False, skip_blank_lines=False, skipinitialspace=True

@@ -18,7 +18,7 @@ import pytest
 import skilllib
 from skilllib.cohort import CohortModel, generate_cohort
 from skilllib.features import trial_features
-from skilllib.pipeline import RUN_FILES, OutputError, main, output_folder
+from skilllib.pipeline import MANIFEST, RUN_FILES, OutputError, main, output_folder
 from skilllib.pipeline import _run as pipeline
 from skilllib.prototypes import _kmeans as pt
 from skilllib.recordings import recordings_from_frame, write_recordings
@@ -144,7 +144,7 @@ def test_a_reused_out_keeps_no_figure_of_the_earlier_run(tmp_path, capsys, small
     figures = set(json.loads((out / "results.json").read_text())["figures"])
     assert figures and all((out / f).exists() for f in figures)
     assert _run(capsys, "--data", str(small_file), "--out", str(out), "--no-figures")[0] == DONE
-    assert {p.name for p in out.iterdir()} == {"results.json"}
+    assert {p.name for p in out.iterdir()} == {"results.json", MANIFEST}
     assert not list(tmp_path.glob(".o.partial-*")) and not list(tmp_path.glob(".o.old-*"))
 
 
@@ -173,20 +173,89 @@ def test_a_folder_with_other_files_is_refused_and_left_alone(tmp_path, capsys, s
 
 
 def test_what_a_run_writes_is_all_that_a_run_may_replace(tmp_path):
-    """A folder holding exactly a run's files (results.json, trials.parquet and the figures it lists) is
-    replaced; one more file, and it is not."""
+    """A folder a run wrote (its manifest lists every file) is replaced; one more file, and it is not."""
     out = tmp_path / "o"
-    out.mkdir()
-    (out / "results.json").write_text(json.dumps({"figures": ["a.png"]}))
-    (out / "a.png").write_bytes(b"x")
-    for name in RUN_FILES[1:]:
-        (out / name).write_bytes(b"x")
+    with output_folder(out) as fresh:
+        for name in ("results.json", "a.png", *RUN_FILES[1:]):
+            (fresh / name).write_bytes(b"x")
+    assert json.loads((out / MANIFEST).read_text())["files"] == sorted(["results.json", "a.png", *RUN_FILES[1:]])
     with output_folder(out) as fresh:
         (fresh / "results.json").write_text("{}")
-    assert {p.name for p in out.iterdir()} == {"results.json"}
+    assert {p.name for p in out.iterdir()} == {"results.json", MANIFEST}
     (out / "b.png").write_bytes(b"x")
     with pytest.raises(OutputError, match="b.png"), output_folder(out):
         pass
+
+
+def test_another_tools_results_json_never_makes_a_folder_a_runs(tmp_path, capsys, small_file):
+    """Issue 23: a results.json whose ``figures`` list names the user's thesis made the folder look like
+    a run's, and the run deleted the thesis. Without the run's manifest nothing in a folder is a run's."""
+    out = tmp_path / "d"
+    out.mkdir()
+    (out / "results.json").write_text(json.dumps({"figures": ["thesis.docx"]}))
+    (out / "thesis.docx").write_text("years of work")
+    code, _, err = _run(capsys, "--data", str(small_file), "--out", str(out), "--no-figures")
+    assert code == 2 and "did not write" in err and "thesis.docx" in err
+    assert (out / "thesis.docx").read_text() == "years of work"
+    (out / "thesis.docx").unlink()  # another tool's results.json alone: refused too
+    code, _, err = _run(capsys, "--data", str(small_file), "--out", str(out), "--no-figures")
+    assert code == 2 and "results.json" in err and json.loads((out / "results.json").read_text())
+
+
+def test_an_out_that_holds_the_input_is_refused(tmp_path, capsys, small_file):
+    out = tmp_path / "d"
+    out.mkdir()
+    data = out / "trials.csv"
+    data.write_bytes(small_file.read_bytes())
+    code, _, err = _run(capsys, "--data", str(data), "--out", str(out), "--no-figures")
+    assert code == 2 and "holds the input" in err
+    assert data.read_bytes() == small_file.read_bytes()
+
+
+@pytest.mark.parametrize("out", ["", ".", ".."])
+def test_an_empty_out_or_the_current_folder_is_refused(tmp_path, capsys, small_file, monkeypatch, out):
+    work = tmp_path / "work"
+    work.mkdir()
+    (work / "notes.txt").write_text("keep")
+    monkeypatch.chdir(work)
+    code, _, err = _run(capsys, "--data", str(small_file), "--out", out, "--no-figures")
+    assert code == 2 and "--out" in err
+    assert (work / "notes.txt").read_text() == "keep" and Path.cwd() == work
+    assert sorted(p.name for p in work.iterdir()) == ["notes.txt"]  # nothing written, nothing renamed
+
+
+def test_the_output_folder_is_checked_before_anything_is_computed(tmp_path, capsys, small_file, monkeypatch):
+    """A foreign --out fails at once: the recordings are never read."""
+
+    def must_not_run(*args, **kwargs):
+        raise AssertionError("the data were read before the output folder was checked")
+
+    monkeypatch.setattr(pipeline, "load_recordings", must_not_run)
+    out = tmp_path / "mine"
+    out.mkdir()
+    (out / "thesis.tex").write_text("x")
+    code, _, err = _run(capsys, "--data", str(small_file), "--out", str(out))
+    assert code == 2 and "thesis.tex" in err
+
+
+@pytest.mark.slow  # a subprocess killed mid-run
+def test_sigterm_cleans_up_like_ctrl_c(tmp_path):
+    """SIGTERM (as a cluster's job manager sends) ends the run with one line and exit 143, leaving the
+    output folder as it was and no partial folder behind."""
+    out = tmp_path / "o"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "skilllib", "run", "--out", str(out), "--no-figures", "--quiet"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    time.sleep(3.0)  # reading and computing (the default run takes several seconds)
+    assert proc.poll() is None, "the run ended before it could be terminated"
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 143, err
+    assert err.strip() == "error: terminated"
+    assert not out.exists() and not list(tmp_path.glob(".o.partial-*"))
 
 
 def test_a_second_run_on_a_folder_being_written_is_refused(tmp_path, capsys, small_file):

@@ -32,8 +32,8 @@ import pytest
 
 from skilllib.cohort import CohortModel, generate_cohort
 from skilllib.features import CONTACT_WINDOW, segment, select, trial_features
+from skilllib.pipeline import MANIFEST, main
 from skilllib.pipeline import _run as pipeline
-from skilllib.pipeline import main
 from skilllib.prototypes import _kmeans as pt
 from skilllib.prototypes import sparc_sensitivity
 from skilllib.recordings import read_recordings, recordings_from_frame, write_recordings
@@ -760,12 +760,12 @@ def test_figures_are_written_only_when_asked_and_change_nothing_else(tmp_path, r
     assert _without(res, "figures") == plain_res
     want = {f"{n}.{ext}" for n in FIGURES for ext in ("png", "svg")}
     assert len(res["figures"]) == len(want) and set(res["figures"]) == want
-    assert {p.name for p in out.iterdir()} == want | {"results.json"}
+    assert {p.name for p in out.iterdir()} == want | {"results.json", MANIFEST}
     assert res["dataset"]["synthetic"] is False  # a user's file: no "synthetic data" footer on its figures
     assert not any("Synthetic data" in (out / n).read_text() for n in want if n.endswith(".svg"))
     assert all((out / n).stat().st_size > 0 for n in want)
     assert plain_res.get("figures", []) == [] and plain.results.get("figures", []) == []
-    assert {p.name for p in out_plain.iterdir()} == {"results.json"}
+    assert {p.name for p in out_plain.iterdir()} == {"results.json", MANIFEST}
 
 
 # --- the command line: each flag reaches run() as its option -----------------------------------------
