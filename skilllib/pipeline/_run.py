@@ -12,6 +12,7 @@ written to ``results.json`` (schema in docs/results.md) and writes the figures b
 from __future__ import annotations
 
 import math
+import os
 import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -132,6 +133,11 @@ def check_sparc_params(fc: float, amp_th: float, padlevel: int) -> dict[str, flo
 
 #: K-means' random_state must lie in 0 .. 2**32 - 1 (numpy's legacy seeding, which scikit-learn uses).
 MAX_SEED = 2**32 - 1
+
+
+def _max_workers() -> int:
+    """The most local Dask workers a run starts: one single-threaded process per core of this machine."""
+    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
 
 
 def check_options(
@@ -319,6 +325,12 @@ def run(
             lowpass = parse_lowpass(lowpass)
         except ValueError as e:
             raise OptionError(str(e)) from None
+    if workers is not None and not (
+        isinstance(workers, (int, np.integer)) and not isinstance(workers, bool) and 1 <= workers <= _max_workers()
+    ):
+        raise OptionError(
+            f"workers must be an integer from 1 to {_max_workers()} (this machine's cores), got {workers!r}"
+        )
     if out is not None:  # everything about the output folder is checked before anything is computed
         out = check_output(out, inputs=(data,) if isinstance(data, (str, Path)) else ())
     features = None

@@ -19,6 +19,8 @@ def check_file(path: Path, kind: str) -> None:
         raise DataFormatError(f"{path}: file not found")
     if path.is_dir():
         raise DataFormatError(f"{path}: is a directory, not a {kind} file")
+    if not path.is_file():  # a device (/dev/zero), a pipe or a socket: it may never end
+        raise DataFormatError(f"{path}: is not a regular file (a device, pipe or socket), not a {kind} file")
 
 
 def quote(text: Any) -> str:

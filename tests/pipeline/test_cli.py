@@ -549,3 +549,21 @@ def test_default_run_writes_results_and_figures(tmp_path):
     assert set(res["figures"]) == {f"{n}.{ext}" for n in FIGURES for ext in ("png", "svg")}
     for name in res["figures"]:
         assert (out / name).stat().st_size > 0
+
+
+@pytest.mark.parametrize("workers", ["0", "-1", "100000"])
+def test_workers_out_of_range_are_an_option_error(tmp_path, capsys, small_frame, workers):
+    """Issue 23: --workers 0 was accepted and --workers 100000 ran for minutes; both are exit 2 at once,
+    before the data are read or the output folder made."""
+    data = _write(small_frame, tmp_path / "rec.csv")
+    code, _, err = _run(capsys, "--data", str(data), "--out", str(tmp_path / "o"), "--workers", workers)
+    assert code == 2
+    _one_line_error(err, "workers must be an integer from 1 to")
+    assert not (tmp_path / "o").exists()
+
+
+def test_a_device_is_refused_before_it_is_read(tmp_path, capsys):
+    """Issue 23: --data /dev/zero was read into memory until MemoryError (exit 1)."""
+    code, _, err = _run(capsys, "--data", "/dev/zero", "--out", str(tmp_path / "o"))
+    assert code == 2
+    _one_line_error(err, "/dev/zero", "not a regular file")
