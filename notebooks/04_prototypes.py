@@ -272,23 +272,13 @@ assert protos["band capped"].tolist() == [True] + [False] * 5, (
 
 
 # %%
-def as_ranges(ks):
-    """[2, 3, 4, 7] -> '2-4, 7'."""
-    if not ks:
-        return "none"
-    runs, start = [], ks[0]
-    for a, b in zip(ks, ks[1:] + [None]):
-        if b != a + 1:
-            runs.append(f"{start}-{a}" if a > start else f"{a}")
-            start = b
-    return ", ".join(runs)
 
 
 c_pv = fit.centres["pv"]
 comparison = pd.DataFrame(
     {
         "selected trials": ("650", f"{len(sel)}"),
-        "valid k": ("2-16", as_ranges(valid)),
+        "valid k": ("2-16", sweep.valid_k_ranges()),
         "k used": ("6", f"{fit.k}"),
         "average silhouette, k = 6": ("0.337", f"{fit.silhouette:.3f}"),
         "centre PVs (m/s)": (
@@ -326,7 +316,7 @@ comparison
 pd.Series(
     {
         "selected trials": len(sel),
-        "valid k (raw)": as_ranges(valid),
+        "valid k (raw)": sweep.valid_k_ranges(),
         "highest average silhouette": (
             f"k = {best} ({sweep.results[best].silhouette:.3f})"
         ),

@@ -46,13 +46,6 @@ rec, sel, fit = analysis.recordings, analysis.selected, analysis.fit
 ids = (sel["participant"], sel["trial"])
 
 
-def trial_ids(result):
-    """The prototypes' (participant, trial) pairs."""
-    return set(
-        result.prototypes[["participant", "trial"]].itertuples(index=False, name=None)
-    )
-
-
 print(
     f"{len(sel)} selected trials from {sel.participant.nunique()} participants; "
     f"K-means, k = 6, raw features"
@@ -144,7 +137,7 @@ adj_table = pd.DataFrame(
     {
         name: {
             "ARI with the SPARC partition": adjusted_rand_score(fit.labels, f.labels),
-            "prototypes kept": len(trial_ids(f) & trial_ids(fit)),
+            "prototypes kept": len(f.prototype_ids & fit.prototype_ids),
             "average silhouette": f.silhouette,
         }
         for name, f in adjusted.items()

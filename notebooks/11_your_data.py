@@ -39,8 +39,6 @@
 # %% tags=["hide-input"]
 import json
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -52,13 +50,6 @@ import skilllib.figures as skf
 work = Path("_your_data")  # everything this chapter writes goes here
 shutil.rmtree(work, ignore_errors=True)  # start empty: no results of an earlier run
 work.mkdir()
-
-
-def skilllib_run(*args: str) -> subprocess.CompletedProcess:
-    """Run `python -m skilllib run --quiet ARGS` as in a terminal (chapter 12 shows the
-    command in full) and return what it printed and its exit status."""
-    command = [sys.executable, "-m", "skilllib", "run", "--quiet", *args]
-    return subprocess.run(command, capture_output=True, text=True, check=False)
 
 
 # %% [markdown]
@@ -129,7 +120,7 @@ print("\n".join((work / "mocap" / "S1" / "touch1.trc").read_text().splitlines()[
 # the same movements from the generator's own CSV, whose contact flag comes from the simulated touch:
 
 # %%
-mocap_run = skilllib_run("--data", str(work / "mocap"), "--up-axis", "z",
+mocap_run = sk.run_command("--data", str(work / "mocap"), "--up-axis", "z",
                          "--contact-height", str(SURFACE + 0.0002), "--no-figures",
                          "--out", str(work / "mocap_results"))  # fmt: skip
 print(mocap_run.stdout.splitlines()[0], "| exit status", mocap_run.returncode)

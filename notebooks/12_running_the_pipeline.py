@@ -36,7 +36,6 @@
 import json
 import shutil
 import subprocess
-import sys
 import textwrap
 from pathlib import Path
 
@@ -61,10 +60,9 @@ def wrapped(text: str) -> str:
 
 
 def skilllib_run(*args: str) -> subprocess.CompletedProcess:
-    """Run `python -m skilllib run --quiet ARGS` as in a terminal; show what it printed
-    (long lines wrapped to the page) and its exit status."""
-    command = [sys.executable, "-m", "skilllib", "run", "--quiet", *args]
-    proc = subprocess.run(command, capture_output=True, text=True, check=False)
+    """`sk.run_command(*args)` (`python -m skilllib run --quiet ARGS` as in a terminal);
+    show what it printed (long lines wrapped to the page) and its exit status."""
+    proc = sk.run_command(*args)
     print(wrapped(proc.stdout + proc.stderr))
     print("exit status:", proc.returncode)
     return proc

@@ -38,8 +38,6 @@
 # %% tags=["hide-input"]
 import json
 import shutil
-import subprocess
-import sys
 import textwrap
 from pathlib import Path
 
@@ -52,12 +50,6 @@ import skilllib.figures as skf
 work = Path("_noise_and_filters")  # everything this chapter writes goes here
 shutil.rmtree(work, ignore_errors=True)  # start empty: no results of an earlier run
 work.mkdir()
-
-
-def skilllib_run(*args: str) -> subprocess.CompletedProcess:
-    """Run `python -m skilllib run --quiet ARGS` as in a terminal."""
-    command = [sys.executable, "-m", "skilllib", "run", "--quiet", *args]
-    return subprocess.run(command, capture_output=True, text=True, check=False)
 
 
 # %% [markdown]
@@ -222,7 +214,7 @@ vr_options = [
 vr_runs = {}
 for lowpass in ("auto", "none"):
     out = work / f"vr_{lowpass}"
-    proc = skilllib_run("--data", str(work / "vr_log.csv.gz"), *vr_options,
+    proc = sk.run_command("--data", str(work / "vr_log.csv.gz"), *vr_options,
                         "--lowpass", lowpass, "--out", str(out))  # fmt: skip
     print(f"--lowpass {lowpass}: exit status {proc.returncode}")
     for line in proc.stdout.splitlines()[1:3]:  # the summary's trial counts, wrapped

@@ -243,6 +243,7 @@ __getattr__, __dir__, _names = _lazy.attach(
             "survey_summary",
         ],
         "pipeline": [
+            "run_command",
             "check_output",
             "MANIFEST",
             "Analysis",

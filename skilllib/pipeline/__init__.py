@@ -11,7 +11,7 @@ __getattr__, __dir__, __all__ = _lazy.attach(
     __name__,
     submod_attrs={
         "_analysis": ["Analysis", "analyse"],
-        "_cli": ["main"],
+        "_cli": ["main", "run_command"],
         "_output": ["check_output", "MANIFEST", "output_folder", "OutputError", "RUN_FILES"],
         "_run": ["DEFAULT_DATA", "OptionError", "run"],
         "_summary": ["summary_lines"],

@@ -16,6 +16,7 @@ from __future__ import annotations
 import argparse
 import os
 import signal
+import subprocess
 import sys
 import threading
 from collections.abc import Sequence
@@ -275,6 +276,24 @@ def _run(args: argparse.Namespace) -> int:
     n_fig = len(result.results.get("figures", []))
     print(f"wrote {args.out}/results.json" + ("" if args.no_figures else f" and {n_fig} figure files (PNG, SVG)"))
     return 0 if result.prototypes is not None else 3
+
+
+def run_command(*args: str) -> subprocess.CompletedProcess:
+    """Run ``python -m skilllib run --quiet ARGS`` in a new process, as a user would in a terminal.
+
+    Parameters
+    ----------
+    *args : str
+        The options after ``run`` (text), e.g. ``"--data", "rec.csv", "--out", "results"``.
+
+    Returns
+    -------
+    subprocess.CompletedProcess
+        What the command printed (``stdout``, ``stderr``; text) and its exit status (``returncode``,
+        dimensionless; the statuses of :func:`main`).
+    """
+    command = [sys.executable, "-m", "skilllib", "run", "--quiet", *args]
+    return subprocess.run(command, capture_output=True, text=True, check=False)
 
 
 class _Terminated(BaseException):

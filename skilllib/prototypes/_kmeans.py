@@ -241,6 +241,11 @@ class PrototypeResult:
     silhouette_estimate: SilhouetteEstimate | None = None
 
     @property
+    def prototype_ids(self) -> set[tuple[str, str]]:
+        """The prototypes' (participant, trial) ids (text): compare two fits' prototypes with ``&``."""
+        return set(self.prototypes[["participant", "trial"]].itertuples(index=False, name=None))
+
+    @property
     def labels(self) -> np.ndarray:
         """Cluster of each trial (0 = lowest centre PV), input row order."""
         return self.data["cluster"].to_numpy()
@@ -407,7 +412,18 @@ class SilhouetteSweep:
         return int(self.ks[-1]) < self.requested[1]
 
     def valid_ks(self) -> list[int]:
+        """The k (dimensionless) whose clustering is valid, ascending."""
         return [int(k) for k in self.ks if self.results[k].valid]
+
+    def valid_k_ranges(self) -> str:
+        """The valid k as runs, for a reader: ``"2-4, 7"`` (``"none"`` when no k is valid)."""
+        ks, runs = self.valid_ks(), []
+        for k in ks:
+            if runs and k == runs[-1][1] + 1:
+                runs[-1][1] = k
+            else:
+                runs.append([k, k])
+        return ", ".join(f"{a}-{b}" if b > a else f"{a}" for a, b in runs) or "none"
 
     def table(self) -> pd.DataFrame:
         """One row per k: ``silhouette``, ``valid``, ``failing`` (cluster ids below the average)."""

@@ -567,3 +567,12 @@ def test_a_device_is_refused_before_it_is_read(tmp_path, capsys):
     code, _, err = _run(capsys, "--data", "/dev/zero", "--out", str(tmp_path / "o"))
     assert code == 2
     _one_line_error(err, "/dev/zero", "not a regular file")
+
+
+@pytest.mark.slow  # a subprocess
+def test_run_command_runs_the_command_line_in_a_new_process(tmp_path):
+    """sk.run_command is what the chapters use to show the command as a user types it."""
+    from skilllib.pipeline import run_command
+
+    proc = run_command("--data", str(tmp_path / "missing.csv"), "--out", str(tmp_path / "o"))
+    assert proc.returncode == 2 and proc.stderr.startswith("error: ") and "missing.csv" in proc.stderr

@@ -413,3 +413,15 @@ def test_fits_run_single_threaded_and_restore_limits():
     assert inside and all(n == 1 for n in inside)
     fit_prototypes(blobs(n_per=5)[0], 3)
     assert [(i["internal_api"], i["num_threads"]) for i in threadpool_info()] == before
+
+
+@pytest.mark.parametrize(
+    "ks, text", [([2, 3, 4, 7], "2-4, 7"), ([5], "5"), ([], "none"), ([2, 4, 6], "2, 4, 6"), ([3, 4], "3-4")]
+)
+def test_valid_k_ranges_reads_as_runs(ks, text):
+    """The chapters print the valid k as runs; a run cut short or a lone k merged would misreport them."""
+    from types import SimpleNamespace
+
+    from skilllib.prototypes import SilhouetteSweep
+
+    assert SilhouetteSweep.valid_k_ranges(SimpleNamespace(valid_ks=lambda: ks)) == text
