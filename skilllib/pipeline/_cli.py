@@ -283,7 +283,7 @@ def run_command(*args: str) -> subprocess.CompletedProcess:
 
     Parameters
     ----------
-    *args : str
+    \\*args : str
         The options after ``run`` (text), e.g. ``"--data", "rec.csv", "--out", "results"``.
 
     Returns
