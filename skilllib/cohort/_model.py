@@ -130,6 +130,10 @@ class CohortModel:
         Time constant of the critically damped virtual wall (s).
     press_depth : tuple of float
         Range of the static penetration while resting on the surface (m).
+    stamp_jitter : float
+        Half-width of the uniform jitter of the logged time stamps (s; 0: stamps on the grid). Each sample
+        is taken at its jittered stamp (a VR or game-engine log); the jitter comes from its own generator
+        per trial, so a jittered cohort holds the same movements as the regular one.
     """
 
     n_participants: int = 10
@@ -165,6 +169,7 @@ class CohortModel:
     noise_sd: float = 0.00003  # m, position noise (Phantom Premium 1.5 resolution about 0.03 mm)
     wall_tau: float = 0.01  # s, time constant of the critically damped virtual wall
     press_depth: tuple[float, float] = (0.0002, 0.001)  # m, static penetration while resting on the surface
+    stamp_jitter: float = 0.0  # s, half-width of the time stamps' uniform jitter (0: on the grid)
 
 
 @dataclass(frozen=True, eq=False)
@@ -348,6 +353,9 @@ def _trial(rng: np.random.Generator, m: CohortModel, p: dict, trial: int) -> tup
         return np.column_stack([x, y, z]) + sway
 
     t = np.arange(int(np.floor(t_end * m.fs)) + 1) / m.fs
+    if m.stamp_jitter:  # its own generator: the movements stay those of the regular cohort
+        jitter = np.random.default_rng([trial, *map(ord, p["participant"])]).uniform(-1, 1, len(t) - 1)
+        t = np.sort(np.r_[t[0], t[1:] + m.stamp_jitter * jitter])
     pos = position(t) + rng.normal(0, m.noise_sd, size=(len(t), 3))
     frame = (t, pos, (t >= tc).astype(np.int64))
     tf = np.linspace(onset, tc, max(int(np.ceil((tc - onset) * 1e3)), 2) + 1)  # noise-free truth, ~1 kHz
@@ -455,6 +463,7 @@ PARAMETER_DOCS: dict[str, tuple[str, str]] = {
     "noise_sd": ("m", "SD of the white position noise on each axis (the device's resolution)"),
     "wall_tau": ("s", "time constant of the critically damped virtual wall"),
     "press_depth": ("m", "range of the static penetration while resting on the surface"),
+    "stamp_jitter": ("s", "half-width of the uniform jitter of the logged time stamps (0: on the grid)"),
 }
 
 

@@ -15,12 +15,15 @@ __getattr__, __dir__, __all__ = _lazy.attach(
         "_filtering": [
             "choose_lowpass",
             "Lowpass",
+            "measure_rest_noise",
             "NO_FILTER",
             "NOISE_FIT_RANGE",
             "parse_lowpass",
             "residual_analysis",
             "ResidualAnalysis",
             "residual_trials",
+            "rest_window",
+            "RestNoise",
         ],
         "_segmentation": [
             "Segment",

@@ -37,6 +37,7 @@ reason) or ``invalid`` (cannot be segmented or bad samples, with the reason; fea
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -45,7 +46,7 @@ import pandas as pd
 from .. import smoothness
 from ..recordings import ID_COLUMNS, Recordings, first_true, sort_ids
 from . import _vectorised as batch
-from ._filtering import Lowpass, choose_lowpass
+from ._filtering import NO_FILTER, Lowpass, choose_lowpass, measure_rest_noise
 from ._segmentation import (
     CONTACT_WINDOW,
     MIN_DIFF_WINDOW,
@@ -74,6 +75,8 @@ FEATURE_COLUMNS = (
     "t_onset",
     "t_contact",
     "resampled",
+    "repairs",
+    "n_repaired",
 )
 
 
@@ -188,8 +191,8 @@ def approaches(recordings: Recordings) -> list[np.ndarray]:
 def run_lowpass(recordings: Recordings, lowpass: str | float | Lowpass | None = "auto") -> Lowpass:
     """The :class:`skilllib.features.Lowpass` that ``lowpass`` means for these recordings.
 
-    ``"auto"``: Winter's residual analysis over their approaches, the noise at rest measured over all
-    trials at once (:func:`skilllib.features.rest_noise_many`).
+    ``"auto"``: Winter's residual analysis over their approaches, the noise at rest measured per axis in
+    every trial's rest window (:func:`skilllib.features.measure_rest_noise`).
 
     Parameters
     ----------
@@ -225,17 +228,10 @@ def run_lowpass(recordings: Recordings, lowpass: str | float | Lowpass | None = 
     picked = np.flatnonzero(ok & (length >= 4))
     if not picked.size or not np.isfinite(fs):
         return choose_lowpass("auto", [], fs, window)
-    noise = batch.rest_noise_many(pos, runs, length, ok & (length >= 4), fs, separate)
-
-    class Approaches(Sequence):  # read only by the residual analysis, for at most 100 trials
-        def __len__(self) -> int:
-            return len(picked)
-
-        def __getitem__(self, j):
-            i = int(picked[j])
-            return separate[i] if i in separate else pos[runs.start[i] : runs.start[i] + length[i]]
-
-    return choose_lowpass("auto", Approaches(), fs, window, noise=noise)
+    views = [
+        separate[int(i)] if int(i) in separate else pos[runs.start[i] : runs.start[i] + length[i]] for i in picked
+    ]  # the approaches (views, no copies), as approaches() gives them
+    return choose_lowpass("auto", views, fs, window, noise=measure_rest_noise(views, fs, window))
 
 
 def trial_features(
@@ -258,7 +254,9 @@ def trial_features(
     ``sparc_band_end_hz`` (Hz), ``sparc_capped`` (nullable boolean: fc ended the band), ``ldlj``, ``n``
     (segment samples), ``t_onset``, ``t_contact`` (s, time stamps of the onset sample and of the
     first contact sample), ``resampled`` (the trial's time stamps were irregular and it was resampled onto
-    the uniform grid, :mod:`skilllib.recordings`). Features are NaN (NA) only for invalid trials.
+    the uniform grid, :mod:`skilllib.recordings`), ``repairs`` (text, '' when none: the real-data defects
+    repaired, :func:`skilllib.recordings.repair_trial`) and ``n_repaired`` (samples replaced by
+    interpolation). Features are NaN (NA) only for invalid trials.
 
     Parameters
     ----------
@@ -342,13 +340,58 @@ def trial_features(
             "n": pd.array(np.where(done, seg.n, 0), dtype="Int64"),
             "t_onset": seg.t_onset,
             "t_contact": seg.t_contact,
-            "resampled": trials["timing"].astype(bool).to_numpy(),
+            "resampled": trials["timing"].astype(str).str.contains("resampled:", regex=False).to_numpy(),
+            "repairs": trials.get("repairs", pd.Series([""] * n_all)).fillna("").astype(str).to_numpy(),
+            "n_repaired": trials.get("n_repaired", pd.Series([0] * n_all)).fillna(0).astype(int).to_numpy(),
         },
         columns=list(FEATURE_COLUMNS),
     )
     out.loc[~done, "n"] = pd.NA
+    if filt.borderline and not filt.note:  # what the other choice would change (skilllib.features._filtering)
+        other = NO_FILTER if filt.cutoff_hz is not None else Lowpass(filt.alternative_hz, "given", fs=rec.fs)
+        if other.cutoff_hz is not None or filt.cutoff_hz is not None:
+            kw = dict(sparc_params=sparc_params, window=window, onset_speed=onset_speed, min_samples=min_samples)
+            filt = replace(filt, note=borderline_note(filt, out, trial_features(rec, lowpass=other, **kw)))
     out.attrs["lowpass"] = filt
     return out
+
+
+def borderline_note(lowpass: Lowpass, features: pd.DataFrame, other: pd.DataFrame) -> str:
+    """The note of a borderline ``auto`` filter decision: what the other choice changes.
+
+    Parameters
+    ----------
+    lowpass : Lowpass
+        The run's filter (speed noise in m/s, cut-offs in Hz), ``borderline``.
+    features : pandas.DataFrame
+        The feature table with that filter (:func:`trial_features`; SPARC dimensionless).
+    other : pandas.DataFrame
+        The feature table with the other choice.
+
+    Returns
+    -------
+    str
+        The note (text): the speed noise against the limit (mm/s), the trials whose status changes, the
+        median absolute change of SPARC over the trials valid both ways (dimensionless).
+    """
+    from ._filtering import BORDERLINE_FRACTION, SPEED_NOISE_LIMIT
+
+    changed = int((features["status"].to_numpy() != other["status"].to_numpy()).sum())
+    both = (features["status"] != "invalid").to_numpy() & (other["status"] != "invalid").to_numpy()
+    d = np.abs(features["sparc"].to_numpy(dtype=float)[both] - other["sparc"].to_numpy(dtype=float)[both])
+    instead = (
+        "not filtering"
+        if lowpass.cutoff_hz is not None
+        else f"filtering at {lowpass.alternative_hz:.3g} Hz (Winter's residual analysis)"
+    )
+    return (
+        f"the automatic low-pass decision is borderline: the unfiltered speed noise at rest, "
+        f"{1e3 * lowpass.speed_noise:.2f} mm/s, is within {100 * BORDERLINE_FRACTION:g} % of the "
+        f"{1e3 * SPEED_NOISE_LIMIT:g} mm/s limit; {instead} would change the status of {changed} of "
+        f"{len(features)} trials and SPARC by a median |change| of {np.median(d) if d.size else np.nan:.3g} "
+        f"(over the {int(both.sum())} trials valid both ways); choose explicitly with --lowpass none or HZ "
+        f"(chapter 13)"
+    )
 
 
 def select(features: pd.DataFrame) -> pd.DataFrame:

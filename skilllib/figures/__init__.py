@@ -4,7 +4,7 @@ Every function takes data (arrays, DataFrames, result objects) and returns a mat
 :func:`save` writes it as PNG and SVG. Axes carry units. One submodule per chapter's idea:
 ``smoothness`` (SPARC), ``experiment`` (the data), ``clusters`` (prototypes), ``robot`` (transfer),
 ``dynamics`` (accelerations, torques, execution, time scales), ``recordings`` (noise and
-filters), ``scale`` (time and memory against N).
+filters), ``scale`` (time and memory against N), ``segmentation`` (every trial's segmentation, page by page).
 This package may import the other skilllib modules; none of them imports it.
 """
 
@@ -43,6 +43,7 @@ from .experiment import (
     plot_trials_by_participant,
     segmentation_examples,
     threshold_bound,
+    trials_window,
 )
 from .recordings import plot_residual_analysis, plot_sparc_against_reference
 from .robot import (
@@ -57,6 +58,13 @@ from .robot import (
     plot_time_scaled_plane,
 )
 from .scale import plot_scaling
+from .segmentation import (
+    MAX_SEGMENTATION_PAGES,
+    MAX_SEGMENTATION_TRIALS,
+    plot_segmentation_pages,
+    save_page,
+    segmentation_keys,
+)
 from .smoothness import (
     plot_padded_spectra,
     plot_short_segments,
@@ -79,8 +87,14 @@ __all__ = [
     "plot_padded_spectra",
     "plot_short_segments",
     "plot_trials_by_participant",
+    "trials_window",
     "plot_segmentation",
     "segmentation_examples",
+    "plot_segmentation_pages",
+    "segmentation_keys",
+    "MAX_SEGMENTATION_PAGES",
+    "MAX_SEGMENTATION_TRIALS",
+    "save_page",
     "plot_participant_features",
     "plot_contact_speeds",
     "plot_feature_space",

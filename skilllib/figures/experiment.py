@@ -67,14 +67,53 @@ def few_participants(features: pd.DataFrame, most: int = MAX_FIGURE_PARTICIPANTS
     return kept, f"the first {most} of {len(parts)} participants (by id)"
 
 
+#: s, shown before the earliest onset by :func:`plot_trials_by_participant` (the rest before the movement)
+ONSET_MARGIN_S = 0.2
+#: s, shown after contact at most by :func:`plot_trials_by_participant` (the hand rests on the target)
+AFTER_CONTACT_S = 0.3
+
+
+def trials_window(
+    recordings: Recordings, features: pd.DataFrame, margin: float = ONSET_MARGIN_S
+) -> tuple[float, float]:
+    """The span of time from contact that shows every valid trial's onset: the figure's default window.
+
+    From the earliest onset over the valid trials of ``features`` less ``margin``, to the latest end of
+    their recordings after contact, at most :data:`AFTER_CONTACT_S`.
+
+    Parameters
+    ----------
+    recordings : Recordings
+        The recordings (t in s).
+    features : pandas.DataFrame
+        The per-trial table of :func:`skilllib.features.trial_features` (``t_onset`` and ``t_contact`` in s).
+    margin : float
+        Time shown before the earliest onset (s).
+
+    Returns
+    -------
+    tuple of float
+        The window's start and end relative to contact (s); (-0.9, 0.3) when no trial is valid.
+    """
+    f = features[features["status"] != "invalid"]
+    lead = (f["t_onset"].astype(float) - f["t_contact"].astype(float)).to_numpy()
+    lead = lead[np.isfinite(lead)]
+    if not lead.size:
+        return (-0.9, AFTER_CONTACT_S)
+    ends = [float(recordings.trial(p, tr).t[-1]) for p, tr in zip(f["participant"], f["trial"])]
+    after = float(np.nanmax(np.asarray(ends) - f["t_contact"].astype(float).to_numpy()))
+    return (float(lead.min()) - margin, float(np.clip(after, 0.0, AFTER_CONTACT_S)))
+
+
 def plot_trials_by_participant(
-    recordings: Recordings, features: pd.DataFrame, window: tuple[float, float] = (-0.9, 0.3)
+    recordings: Recordings, features: pd.DataFrame, window: tuple[float, float] | None = None
 ) -> plt.Figure:
     """The paper's Fig. 1b redrawn: height and speed of every valid trial against time from contact.
 
     Vertical position y (m) and speed (m/s, approach only) against time from contact (s), one column per
-    participant (two rows of participants). Selected trials in the participant's colour, excluded ones in
-    grey.
+    participant (two rows of participants from three participants on, one row for one or two). Selected
+    trials in the participant's colour, excluded ones in grey; each trial's onset a black dot on its speed.
+    Every column has its time axis, whatever the number of participants.
 
     Parameters
     ----------
@@ -82,9 +121,10 @@ def plot_trials_by_participant(
         The recordings (t in s, positions in m).
     features : pandas.DataFrame
         The per-trial table of :func:`skilllib.features.trial_features` (pv and contact_speed in m/s,
-        duration in s, sparc dimensionless).
-    window : tuple of float
-        The time span shown, relative to contact (s).
+        duration in s, sparc dimensionless; ``t_onset``, ``t_contact`` in s).
+    window : tuple of float or None
+        The time span shown, relative to contact (s); None: :func:`trials_window`, from the earliest onset
+        (less 0.2 s) to the end of the recordings (at most 0.3 s after contact).
 
     Returns
     -------
@@ -92,13 +132,20 @@ def plot_trials_by_participant(
         The figure; y (m) and speed (m/s) against time (s).
     """
     f = features[features["status"] != "invalid"]
+    if window is None:
+        window = trials_window(recordings, f)
     parts = sort_ids(f["participant"].unique())
-    ncol = int(np.ceil(len(parts) / 2))
-    fig, axs = plt.subplots(4, ncol, figsize=(2.1 * ncol, 7.2), sharex=True, sharey="row", squeeze=False)
+    prow = 1 if len(parts) <= 2 else 2  # rows of participants
+    ncol = max(1, int(np.ceil(len(parts) / prow)))
+    fig, axs = plt.subplots(
+        2 * prow, ncol, figsize=(max(2.1 * ncol, 3.2), 3.6 * prow + 0.2), sharex=True, sharey="row", squeeze=False
+    )
     for i, p in enumerate(parts):
         ay, av = axs[2 * (i // ncol), i % ncol], axs[2 * (i // ncol) + 1, i % ncol]
         lines = {"y": {True: [], False: []}, "v": {True: [], False: []}}
-        for tr, status in f.loc[f["participant"] == p, ["trial", "status"]].itertuples(index=False):
+        onsets = []
+        g = f.loc[f["participant"] == p]
+        for tr, status, t_on in g[["trial", "status", "t_onset"]].itertuples(index=False):
             t, y, v, c = _approach(recordings, p, tr)
             tt = t - t[c]
             keep = (tt >= window[0]) & (tt <= window[1])
@@ -106,21 +153,30 @@ def plot_trials_by_participant(
             lines["y"][sel].append(np.column_stack([tt[keep], y[keep]]))
             kv = keep[:c]
             lines["v"][sel].append(np.column_stack([tt[:c][kv], v[kv]]))
+            o = int(np.argmin(np.abs(t[:c] - t_on))) if pd.notna(t_on) else None
+            if o is not None and window[0] <= tt[o] <= window[1]:
+                onsets.append((tt[o], v[o]))
+        color = _pcolor(parts, p)
         for ax, key in ((ay, "y"), (av, "v")):
             ax.add_collection(LineCollection(lines[key][False], colors="0.75", lw=0.4))
-            ax.add_collection(LineCollection(lines[key][True], colors=[_pcolor(parts, p)], lw=0.5, alpha=0.6))
+            ax.add_collection(LineCollection(lines[key][True], colors=[color], lw=0.5, alpha=0.6))
             ax.autoscale_view()
             ax.axvline(0, color="k", lw=0.5, ls=":")
+        if onsets:
+            av.plot(*np.array(onsets).T, "o", ms=1.5, color="k", alpha=0.5, ls="none", zorder=3, label="onset")
         ay.set_title(f"participant {p}", fontsize=9)
-    for r in (1, 3):
+    for r in range(1, 2 * prow, 2):
         axs[r, 0].set_ylim(0, None)
-    for r in range(4):
+    for r in range(2 * prow):
         axs[r, 0].set_ylabel("y (m)" if r % 2 == 0 else "speed (m/s)")
-    for ax in axs[-1]:
-        ax.set_xlabel("time from contact (s)")
-    for i in range(len(parts), 2 * ncol):  # odd number of participants: hide the spare column
+    axs[0, 0].set_xlim(*window)
+    for i in range(len(parts), prow * ncol):  # a spare panel: hidden, the panel above gets the time axis
         axs[2 * (i // ncol), i % ncol].axis("off")
         axs[2 * (i // ncol) + 1, i % ncol].axis("off")
+        axs[2 * (i // ncol) - 1, i % ncol].tick_params(labelbottom=True)
+        axs[2 * (i // ncol) - 1, i % ncol].set_xlabel("time from contact (s)")
+    for ax in axs[-1, : len(parts) - (prow - 1) * ncol]:
+        ax.set_xlabel("time from contact (s)")
     fig.tight_layout()
     return fig
 

@@ -81,8 +81,8 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument(
         "--data",
         metavar="PATH",
-        help="recordings: a CSV (also .gz, .zip, ...), a .c3d or .trc file (one trial), or a folder of "
-        "them (default: the book's synthetic cohort)",
+        help="recordings: a CSV or tab/semicolon-separated table (also .gz, .zip, ...), a .c3d, .trc or Vicon "
+        "Nexus CSV file (one trial), or a folder of them (default: the book's synthetic cohort)",
     )
     r.add_argument(
         "--out",
@@ -98,12 +98,38 @@ def _parser() -> argparse.ArgumentParser:
         help="rename the file's columns to participant, trial, t, x, y, z, contact",
     )
     g.add_argument(
-        "--units", choices=("m", "cm", "mm"), help="unit of the positions (default: m, or the C3D/TRC header's)"
+        "--units",
+        choices=("m", "cm", "mm"),
+        help="unit of the positions (default: m, or the C3D/TRC/Nexus header's); a stated unit is believed",
     )
+    g.add_argument(
+        "--time-unit",
+        choices=("s", "ms", "us"),
+        help="unit of a table's time column (default: s); t is divided into seconds",
+    )
+    g.add_argument(
+        "--sep",
+        choices=(",", ";", "tab", "\\t", "\t"),
+        metavar="SEP",
+        help="the separator of a table: ',', ';' or 'tab' (default: detected from the first lines)",
+    )
+    g.add_argument(
+        "--max-gap",
+        type=float,
+        metavar="S",
+        help="fill gaps of missing, frozen or jumping positions up to S seconds by interpolation (default 0.1); "
+        "a longer gap before contact makes a trial invalid, after contact cuts it",
+    )
+    g.add_argument("--fill", choices=("cubic", "linear"), help="how the short gaps are filled (default: cubic)")
     g.add_argument(
         "--up-axis", choices=("x", "y", "z", "-x", "-y", "-z"), help="the file's vertical axis, pointing up (default y)"
     )
-    g.add_argument("--marker", metavar="NAME", help="the C3D/TRC marker to use (default: the only one)")
+    g.add_argument(
+        "--marker",
+        metavar="NAME[,NAME...]",
+        help="the C3D/TRC/Nexus marker to use, with or without the subject prefix (default: the only one); "
+        "several: the one of them that moves most in each file",
+    )
     g.add_argument(
         "--contact-channel",
         metavar="NAME",
@@ -234,12 +260,17 @@ def _run(args: argparse.Namespace) -> int:
         "columns": args.columns,
         "units": args.units,
         "up_axis": args.up_axis,
+        "sep": args.sep,
+        "time_unit": args.time_unit,
         "marker": args.marker,
         "contact_channel": args.contact_channel,
         "contact_threshold": args.contact_threshold,
         "contact_height": args.contact_height,
         "name_pattern": args.name_pattern,
     }
+    read_options.update(
+        {k: v for k, v in (("max_gap_s", args.max_gap), ("fill", args.fill)) if v is not None}
+    )  # real-data defects (skilllib.recordings.repair_trial): only when given
     try:
         result = run(
             args.data,

@@ -290,7 +290,7 @@ def run(
         The positions' low-pass filter: ``"auto"``, ``"none"`` or a cut-off in Hz.
     read_options : mapping of str to Any, optional
         How to read ``data`` (:func:`skilllib.recordings.load_recordings`: columns, units, up axis,
-        marker, contact channel, threshold and height in m, name pattern).
+        marker, contact channel, threshold and height in m, name pattern, separator, time unit).
     progress : callable
         ``progress(items, description)`` wrapping the long loops, e.g. tqdm; by default none.
     write_figures : bool
@@ -411,6 +411,8 @@ def compute(
             "n_participants": int(features["participant"].nunique()),
             "fs": json_value(float(recordings.fs)),
             "n_resampled": int(features["resampled"].sum()),
+            "n_repaired": int((features["repairs"] != "").sum()),
+            "n_repaired_samples": int(features["n_repaired"].sum()),
         },
         "sparc_params": {"fc": params["fc"], "amp_th": params["amp_th"], "padlevel": int(params["padlevel"])},
         "filter": lowpass.to_dict(),
@@ -426,6 +428,13 @@ def compute(
         result.messages.append(
             f"{n_res} trial(s) had irregular time stamps (jitter or dropped frames) and were "
             f"resampled onto a uniform {recordings.fs:.4g} Hz grid (trials[].resampled)"
+        )
+    n_rep = results["dataset"]["n_repaired"]
+    if n_rep:
+        result.messages.append(
+            f"{n_rep} trial(s) had real-data defects repaired (stale leading frames, frozen positions, jumps, "
+            f"gaps): {results['dataset']['n_repaired_samples']} sample(s) replaced by interpolation "
+            f"(trials[].repairs; --max-gap)"
         )
     no_rest = int(features["reason"].astype(str).str.startswith("no rest before onset").sum())
     if no_rest > NO_REST_FRACTION * len(features):
@@ -443,6 +452,8 @@ def compute(
         )
     if lowpass.cutoff_hz is not None:
         result.messages.append(filter_message(selected, lowpass))
+    if getattr(features.attrs.get("lowpass"), "note", ""):  # a borderline auto decision and what the other would change
+        result.messages.append(features.attrs["lowpass"].note)
     if len(selected):
         result.messages.append(capped_message(selected, params))
 
@@ -546,22 +557,23 @@ def filter_message(selected: pd.DataFrame, lowpass: Lowpass) -> str:
 
 
 def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
-    """Write every figure of the pipeline (PNG and SVG) to ``out``; return their file names."""
+    """Write every figure of the pipeline (PNG and SVG; the segmentation pages PNG only) to ``out``; return
+    their file names."""
     from .. import figures as fg
 
     written = []
 
-    def keep(fig, name: str, note: str = "") -> None:
+    def keep(fig, name: str, note: str = "", save: Callable | None = None) -> None:
         if run_.results["dataset"]["synthetic"]:
             fig.text(0.995, 0.003, SYNTHETIC_NOTE, ha="right", va="bottom", fontsize=7, color="0.35")
         if note:
             fig.text(0.005, 0.003, f"Shown: {note}.", ha="left", va="bottom", fontsize=7, color="0.35")
-        written.extend(p.name for p in fg.save(fig, out, name))
+        written.extend(p.name for p in (save or fg.save)(fig, out, name))
         fg.plt.close(fig)
 
+    samples = isinstance(run_.recordings, Recordings)  # not on the cluster path: the samples stay there
     if (run_.features["status"] != "invalid").any():  # the data figures need at least one valid trial
         keep(fg.plot_feature_overview(run_.features, run_.results["sparc_params"]["amp_th"]), "features")
-        samples = isinstance(run_.recordings, Recordings)  # not on the cluster path: the samples stay there
         few, note = fg.few_participants(run_.features)  # one panel per participant: at most 12
         if samples:
             keep(fg.plot_trials_by_participant(run_.recordings, few), "trials_by_participant", note)
@@ -571,6 +583,10 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
                 fg.plot_sparc_vs_length(run_.features, run_.recordings.fs, run_.results["sparc_params"]["amp_th"]),
                 "sparc_vs_length",
             )
+    if samples and len(run_.features):  # each trial's segmentation (every invalid one included): PNG pages of 24
+        shown, note = fg.segmentation_keys(run_.features, fg.MAX_SEGMENTATION_TRIALS)
+        for i, fig in enumerate(fg.plot_segmentation_pages(run_.recordings, run_.features, keys=shown), 1):
+            keep(fig, f"segmentation-{i:02d}", note, save=fg.save_page)
     if run_.prototypes is not None:
         keep(fg.plot_silhouette_sweep(run_.sweep, chosen_k=run_.prototypes.k), "silhouette_sweep")
         keep(fg.plot_silhouettes(run_.prototypes), "silhouettes_k")

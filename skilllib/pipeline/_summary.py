@@ -44,6 +44,12 @@ def summary_lines(run_: PipelineRun) -> list[str]:
             f"invalid: {counts.get('invalid', 0)}"
         ),
     ]
+    if "repairs" in f.columns and (f["repairs"] != "").any():
+        rep = f["repairs"] != ""
+        lines.append(
+            f"repaired: {int(rep.sum())} trial(s), {int(f['n_repaired'].sum())} sample(s) replaced by interpolation "
+            f"(stale leading frames, frozen positions, jumps, gaps; trials[].repairs)"
+        )
     for status in ("invalid", "excluded"):
         reasons = Counter(reason_kind(r) for r in f.loc[f["status"] == status, "reason"])
         if reasons:

@@ -62,7 +62,7 @@ def write_trials(features: pd.DataFrame, folder: Path) -> Path:
     path = Path(folder) / TRIALS_FILE
     table = features.copy()
     table.attrs = {}
-    for c in ("participant", "trial", "status", "reason"):
+    for c in ("participant", "trial", "status", "reason", "repairs"):
         table[c] = table[c].astype(str)
     table.to_parquet(path, index=False, engine="pyarrow")
     return path

@@ -1,34 +1,59 @@
-"""One trial from a C3D file (Vicon, Qualisys, OptiTrack export): a marker's path and the contact flag.
+"""One trial from a C3D file (Vicon, Qualisys, OptiTrack, Optotrak export): a marker's path and the contact flag.
 
-**Reader: ``c3d``** (0.6.0, pure Python, numpy only; pinned), not ``ezc3d`` (1.7.2, C++ core). Both read
-the parameters, points, analog channels and events this module needs, and ``ezc3d`` is faster and
-writes files more easily; what decided is what a *damaged* file does. A folder of recordings must
-survive one bad file (its trial is reported, the others are read), and ``ezc3d``'s C++ parser does not
-fail safely: on copies of a small valid file truncated inside the parameter section it crashed the
-interpreter (segmentation fault) or looped without end, and with 3 random bytes changed in the
-parameter section it crashed or hung on 6 of 40 copies (measured 2026-11-24 with ezc3d 1.7.2, each
-copy read in a subprocess with a 5 s limit). ``c3d`` raised a Python exception on all 40 and on every
-truncation, which :func:`read_c3d` turns into a one-line :class:`~skilllib.recordings.DataFormatError`. It
-reads frame by frame in Python, fast enough for one-trial files (thousands of frames); it is imported
-on first use, so ``import skilllib`` does not pay for it. (Its ``Writer.add_frames`` in 0.6.0 fails when
-the point and analog arrays of a frame share a first dimension of 1, as numpy broadcasts them; the
-tests pass a prebuilt ``(n_frames, 2)`` object array of ``(points, analog)``.)
+**Reader: ``ezc3d``** (1.7.2, pyomeca's maintained C++ reader; pinned), behind two safety layers. The
+pure-Python ``c3d`` package (0.6.0), used before, failed on what vendors write: an OptiTrack Motive file
+that numbers its first frame 0 lost a frame ("file cut short"), an Optotrak export's last frame was
+misread, a wheelchair-propulsion file did not parse (``SCALE: cannot get value as numpy.float32``), and an
+ezc3d-written file was refused for its scale factor's sign; ``ezc3d`` reads them all. But its parser does
+not fail safely: on copies of a small valid file truncated inside the parameter section it crashed the
+interpreter (segmentation fault) or looped without end, and with 3 random bytes changed in the parameter
+section it crashed or hung on 6 of 40 copies (measured 2026-11-24, each copy in a subprocess with a 5 s
+limit; again 4 of 40 on another file). A folder of recordings must survive one bad file, so:
+
+1. **Checked in Python first** (:func:`~skilllib.recordings._c3d_safe.inspect_c3d`): the header, every
+   record of the parameter section (names are text, each record and its data inside the section, types
+   known, the chain moves forward), POINT:SCALE and POINT:RATE usable, the data start after the
+   parameters, ``ANALOG:SCALE``/``OFFSET`` with a value per channel (ezc3d crashes on the empty ones
+   ``c3d``'s ``Writer`` leaves, and reads memory it does not own on too few), and the frame counts against
+   the bytes the data hold. Most damage is caught here with a precise message, before any C++ code reads
+   the file (measured 2026-11-27: of 40 copies of a small ezc3d-written file with 3 random bytes changed
+   in the parameter section, 34 refused here, among them all 4 on which ezc3d crashed or hung; 5 read,
+   1 refused by ezc3d).
+2. **Parsed by ezc3d in a worker process** (:mod:`~skilllib.recordings._c3d_worker`), started on the first
+   C3D file and reused for every later one (measured: 0.35-0.55 s to start; then 2.5-7 ms per small
+   file, against 1.3-3 ms for ezc3d in the caller; 50 files of 300 frames: 0.13-0.34 s): a parser
+   that crashes or runs past its time limit (10 s + 1 s per MB) ends the worker, not the caller, and the
+   file gets ``could not be parsed (the C3D reader crashed/timed out): the file is damaged``; the next
+   file starts a new worker.
+
+Every failure is one line, a :class:`~skilllib.recordings.DataFormatError` naming the file (the command
+line exits 2); nothing is written before the whole file is read.
 
 Rules of :func:`read_c3d` (one file = one trial):
 
 * **marker**: by name in ``POINT:LABELS`` (and ``LABELS2``, ...); a name matches a label exactly, or
   the part after the last ``:`` of a label (Vicon writes ``Subject:Marker``) when exactly one label has
-  it. Points listed as model outputs (``POINT:ANGLES``, ``FORCES``, ``MOMENTS``, ``POWERS``,
-  ``SCALARS``, ``REACTIONS``) are not markers. Without a name, the only marker is used; several markers
-  without a name, or an unknown name, raise an error listing the markers.
+  it. An empty label is named ``unnamed_K``, K the point's number in the file (from 1). Points listed as
+  model outputs (``POINT:ANGLES``, ``FORCES``, ``MOMENTS``, ``POWERS``, ``SCALARS``, ``REACTIONS``) are not
+  markers. Without a name, the only marker is used; several markers without a name, or an unknown name,
+  raise an error listing the markers.
 * **units**: ``POINT:UNITS`` (``mm``, ``cm``, ``m``) converted to m; the ``units`` argument overrides
-  a missing or wrong header.
+  a missing or wrong header. ``attrs["units"]`` of the result is the unit the file states (``"mm"``,
+  ``"cm"``, ``"m"``), or None when it states none (or one not known).
+* **storage**: POINT:SCALE < 0 means floats, > 0 scaled integers (ezc3d applies the scale); either sign
+  is read.
+* **frames**: the header (first and last frame), ``POINT:FRAMES`` and ``TRIAL:ACTUAL_START/END_FIELD``
+  may disagree (vendors write them differently): the largest announced count the data hold is read
+  (frames past a smaller count that are all zero bytes are the block padding, not frames), and the
+  disagreement is a note in ``attrs["c3d_notes"]``. When every announced count is more than the data
+  hold, the file is cut short: an error.
 * **time**: ``t = (f - 1 + i) / POINT:RATE`` (s) for point frame ``i = 0, 1, ...``, with ``f`` the first
-  frame number of the file (counted from 1: ``TRIAL:ACTUAL_START_FIELD`` or the header), so that frame 1
-  of the capture is at 0 s and a cropped trial keeps its capture clock, the clock of ``EVENT:TIMES``.
-* **gaps**: a sample with a negative residual (the C3D "not seen") or exactly at ``(0, 0, 0)`` (the other
-  convention for a missing marker) is NaN in x, y, z, so :mod:`skilllib.recordings` marks the trial invalid
-  naming the sample. A file with fewer frames than its header announces is cut short: an error.
+  frame number of the file (``TRIAL:ACTUAL_START_FIELD`` or the header), so that frame 1 of the capture
+  is at 0 s and a cropped trial keeps its capture clock, the clock of ``EVENT:TIMES``. A file that numbers
+  its first frame 0 (OptiTrack Motive) counts from 0: its frame 0 is at 0 s (``t = i / POINT:RATE``).
+* **gaps**: a sample with a negative residual (the C3D "not seen"; ezc3d gives it as NaN) or exactly at
+  ``(0, 0, 0)`` (the other convention for a missing marker) is NaN in x, y, z, so
+  :mod:`skilllib.recordings` marks the trial invalid naming the sample.
 * **contact**, from the name ``contact_channel`` (default ``"contact"``; labels compared without case
   or surrounding spaces):
 
@@ -47,15 +72,15 @@ Rules of :func:`read_c3d` (one file = one trial):
 
 from __future__ import annotations
 
-import io
-import warnings
+import tempfile
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
+from ._c3d_safe import inspect_c3d, parse_c3d
 from ._errors import DataFormatError, check_file
-from ._mapping import unit_factor
+from ._mapping import UNIT_FACTORS, unit_factor
 
 NO_CONTACT = np.nan  #: the contact value of every sample when a file has no contact signal
 DEFAULT_CONTACT_CHANNEL = "contact"  #: analog channel or event label looked for when none is named
@@ -63,39 +88,24 @@ MODEL_OUTPUT_GROUPS = ("ANGLES", "FORCES", "MOMENTS", "POWERS", "SCALARS", "REAC
 EVENT_TOLERANCE = 0.01  #: fraction of a frame interval by which a frame may precede an event and count
 
 
-def _texts(reader, name: str) -> list[str]:
-    """A text parameter ``GROUP:NAME`` and its continuations (``LABELS2``, ...) as one list of stripped strings."""
+def _texts(group: dict, name: str) -> list[str]:
+    """A text parameter ``NAME`` of a group and its continuations (``LABELS2``, ...) as one list, stripped."""
     out: list[str] = []
     for key in [name] + [f"{name}{i}" for i in range(2, 100)]:
-        param = reader.get(key)
-        if param is None:
+        if key not in group:
             break
-        out += [str(v).strip() for v in np.ravel(param.string_array)]
+        value = group[key]
+        out += [str(v).strip() for v in (value if isinstance(value, list) else np.ravel(value))]
     return out
 
 
-def _read(path: Path):
-    """(reader, list of (points, analog) per frame); DataFormatError for anything the parser refuses."""
-    check_file(path, "C3D")
-    import c3d as c3dlib  # first use only: keeps `import skilllib` and `--help` fast
-
-    raw = path.read_bytes()
+def _number(group: dict, name: str) -> float | None:
+    """The first value of a numeric parameter, or None."""
+    value = np.ravel(np.asarray(group.get(name, []), dtype=object))
     try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # e.g. "No analog data found in file."; counts are checked below
-            reader = c3dlib.Reader(io.BytesIO(raw))
-            frames = [(p[:, :4].copy(), a.copy()) for _, p, a in reader.read_frames(copy=False)]
-            expected = int(reader.frame_count)
-    except Exception as e:  # the parser raises AssertionError, struct.error, ValueError, ... on damaged files
-        msg = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
-        raise DataFormatError(f"{path}: not a readable C3D file ({msg[:200]})") from None
-    if len(frames) < expected:
-        raise DataFormatError(
-            f"{path}: file cut short: the header announces {expected} frames, the data hold {len(frames)}"
-        )
-    if not frames:
-        raise DataFormatError(f"{path}: no frames in the file")
-    return reader, frames
+        return float(value[0]) if value.size else None
+    except (TypeError, ValueError):
+        return None
 
 
 def _choose_marker(labels: list[str], markers: list[str], marker: str | None, path: Path) -> int:
@@ -108,6 +118,8 @@ def _choose_marker(labels: list[str], markers: list[str], marker: str | None, pa
             raise DataFormatError(f"{path}: no marker in POINT:LABELS")
         raise DataFormatError(f"{path}: {len(markers)} markers ({listed}): choose one with --marker NAME")
     name = marker.strip()
+    if markers.count(name) > 1:
+        raise DataFormatError(f"{path}: {markers.count(name)} points are labelled {name!r}")
     if name in markers:
         return labels.index(name)
     tails = [lab for lab in markers if lab.rsplit(":", 1)[-1] == name]
@@ -131,6 +143,23 @@ def _contact_from_event(t: np.ndarray, t_event: float, rate: float) -> np.ndarra
     return (t >= t_event - EVENT_TOLERANCE / rate).astype(float)
 
 
+def _file_units(text: str) -> str | None:
+    """The length unit a C3D file states, normalised (``"m"``, ``"cm"``, ``"mm"``), or None.
+
+    Parameters
+    ----------
+    text : str
+        ``POINT:UNITS`` as written (text; case and surrounding spaces ignored).
+
+    Returns
+    -------
+    str or None
+        The known unit (text), or None when the text is empty or not a known unit.
+    """
+    key = str(text).strip().lower()
+    return key if key in UNIT_FACTORS else None
+
+
 def read_c3d(
     path: str | Path,
     *,
@@ -144,7 +173,8 @@ def read_c3d(
     ``contact`` is 0/1 from an analog channel or event named ``contact_channel`` (default ``"contact"``
     when present), else all NaN (:data:`NO_CONTACT`) for the height rule. Positions stay in the lab's
     axes: :func:`skilllib.recordings.map_frame` with ``up_axis`` rotates them. Rules (marker choice,
-    units, time origin, gaps, contact threshold) in the module docstring.
+    units, frames, time origin, gaps, contact threshold) and the safety design (a damaged file never
+    crashes or hangs the caller) in the module docstring.
 
     Parameters
     ----------
@@ -165,60 +195,117 @@ def read_c3d(
     Returns
     -------
     pandas.DataFrame
-        ``t`` (s), ``x, y, z`` (m, the file's axes), ``contact`` (0/1 or NaN).
+        ``t`` (s), ``x, y, z`` (m, the file's axes), ``contact`` (0/1 or NaN). ``attrs["units"]``: the unit
+        the file states (text: ``"m"``, ``"cm"``, ``"mm"``) or None; ``attrs["c3d_notes"]``: disagreements in
+        the file that were resolved (list of text, e.g. frame counts).
 
     Raises
     ------
     DataFormatError
-        One line naming the file, when the file is missing, not a C3D file, damaged or cut short, has no or
-        several markers and no ``marker`` (listing them), has no marker ``marker`` (listing them), has no
-        usable ``POINT:RATE``, has units other than m, cm, mm, or has no channel or event named by an
-        explicit ``contact_channel`` (listing those it has).
+        One line naming the file, when the file is missing, not a C3D file, damaged (the reader crashed or
+        timed out on it) or cut short, has no or several markers and no ``marker`` (listing them), has no
+        marker ``marker`` (listing them), has no usable ``POINT:RATE``, has units other than m, cm, mm, or
+        has no channel or event named by an explicit ``contact_channel`` (listing those it has).
     """
     path = Path(path)
-    reader, frames = _read(path)
-    labels = _texts(reader, "POINT:LABELS")
-    outputs = {lab for g in MODEL_OUTPUT_GROUPS for lab in _texts(reader, f"POINT:{g}")}
-    markers = [lab for lab in labels if lab and lab not in outputs]
-    n_points = frames[0][0].shape[0]
-    if n_points != len(labels):
-        raise DataFormatError(f"{path}: {n_points} points but {len(labels)} POINT:LABELS")
+    check_file(path, "C3D")
+    try:
+        raw = path.read_bytes()
+    except OSError as e:
+        raise DataFormatError(f"{path}: cannot be read ({e.strerror or e})") from None
+    layout = inspect_c3d(path, raw)
+    name = (contact_channel if contact_channel is not None else DEFAULT_CONTACT_CHANNEL).strip().lower()
+    if layout.patches:  # frame counts that disagree: ezc3d reads a copy that says the count the data hold
+        with tempfile.TemporaryDirectory(prefix="skilllib-c3d-") as tmp:
+            fixed = bytearray(raw)
+            for offset, new in layout.patches.items():
+                fixed[offset : offset + len(new)] = new
+            copy = Path(tmp) / "copy.c3d"
+            copy.write_bytes(bytes(fixed))
+            try:
+                got = parse_c3d(copy, name, len(raw))
+            except DataFormatError as e:
+                raise DataFormatError(str(e).replace(str(copy), str(path), 1)) from None
+    else:
+        got = parse_c3d(path, name, len(raw))
+    try:
+        return _trial(path, layout, got, marker, contact_channel, contact_threshold, units)
+    except DataFormatError:
+        raise
+    except (ValueError, TypeError, IndexError, KeyError) as e:  # parameters of unexpected shape or type
+        raise DataFormatError(f"{path}: not a readable C3D file ({type(e).__name__}: {e})"[:300]) from None
+
+
+def _trial(path, layout, got, marker, contact_channel, threshold, units) -> pd.DataFrame:
+    """The trial's table from the checked layout and ezc3d's values (rules: module docstring)."""
+    params = got["params"]
+    point = params.get("POINT", {})
+    notes = list(layout.notes)
+    pts, res = got["points"], got["residuals"]
+    n_ez, n_points = pts.shape[0], pts.shape[1]
+    n = layout.n_frames
+    if n_ez < n:
+        notes.append(f"the C3D reader read {n_ez} of the {n} frames the data hold")
+        n = n_ez
+    if n == 0:
+        raise DataFormatError(f"{path}: no frames in the file")
+    labels = _texts(point, "LABELS")[:n_points]
+    if len(labels) < n_points:
+        notes.append(f"{n_points} points but {len(labels)} POINT:LABELS: the others are unnamed")
+        labels += [""] * (n_points - len(labels))
+    labels = [lab or f"unnamed_{k}" for k, lab in enumerate(labels, start=1)]
+    outputs = {lab for g in MODEL_OUTPUT_GROUPS for lab in _texts(point, g)}
+    markers = [lab for lab in labels if lab not in outputs]
     k = _choose_marker(labels, markers, marker, path)
-    rate = float(reader.point_rate)
-    if not rate > 0:
+    rate = _number(point, "RATE")
+    if rate is None or not rate > 0:
         raise DataFormatError(f"{path}: no sampling rate (POINT:RATE missing or 0)")
-    unit_text = units if units is not None else (_texts(reader, "POINT:UNITS") or [""])[0]
+    stated = (_texts(point, "UNITS") or [""])[0]
+    unit_text = units if units is not None else stated
     if not unit_text:
         raise DataFormatError(f"{path}: no POINT:UNITS in the file: give the unit with --units m|cm|mm")
     factor = unit_factor(unit_text, f"{path}: POINT:UNITS" if units is None else str(path))
-    pts = np.array([p[k] for p, _ in frames], dtype=float)  # (n_frames, 4): x, y, z, residual
-    xyz = pts[:, :3]
-    xyz[(pts[:, 3] < 0) | np.all(xyz == 0, axis=1)] = np.nan
+    xyz = np.array(pts[:n, k, :], dtype=float)
+    xyz[(res[:n, k] < 0) | np.all(xyz == 0, axis=1) | np.isnan(xyz).any(axis=1)] = np.nan
     xyz *= factor
-    t = (int(reader.first_frame) - 1 + np.arange(len(frames))) / rate
-    contact = _contact(reader, frames, path, t, rate, contact_channel, contact_threshold)
-    return pd.DataFrame({"t": t, "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2], "contact": contact})
+    first = layout.first_frame
+    t = ((first - 1 if first >= 1 else 0) + np.arange(n)) / rate
+    contact = _contact(params, got, n_ez, path, t, rate, contact_channel, threshold)
+    frame = pd.DataFrame({"t": t, "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2], "contact": contact})
+    frame.attrs["units"] = _file_units(stated)
+    frame.attrs["c3d_notes"] = notes
+    return frame
 
 
 def _contact(
-    reader, frames, path: Path, t: np.ndarray, rate: float, contact_channel: str | None, threshold: float | None
+    params: dict,
+    got: dict,
+    n_ez: int,
+    path: Path,
+    t: np.ndarray,
+    rate: float,
+    contact_channel: str | None,
+    threshold: float | None,
 ) -> np.ndarray:
-    name = (contact_channel if contact_channel is not None else DEFAULT_CONTACT_CHANNEL).strip().lower()
-    analog_labels = _texts(reader, "ANALOG:LABELS")
-    hits = [i for i, lab in enumerate(analog_labels) if lab.lower() == name]
-    if hits and frames[0][1].size:
-        blocks = np.array([a[hits[0]] for _, a in frames], dtype=float)  # (n_frames, samples per frame)
+    n = len(t)
+    analog_labels = _texts(params.get("ANALOG", {}), "LABELS")
+    m = got["n_analog"] // n_ez if n_ez else 0
+    if got["analogs"] and m > 0:
+        samples = got["analogs"][min(got["analogs"])]
+        blocks = np.asarray(samples[: n * m], dtype=float).reshape(n, m)  # (n_frames, samples per frame)
         return _contact_from_analog(blocks, threshold)
-    ev_labels = _texts(reader, "EVENT:LABELS")
-    param = reader.get("EVENT:TIMES")
-    times = np.asarray(param.float_array, dtype=float).reshape(-1, 2) if param is not None else np.zeros((0, 2))
+    name = (contact_channel if contact_channel is not None else DEFAULT_CONTACT_CHANNEL).strip().lower()
+    event = params.get("EVENT", {})
+    ev_labels = _texts(event, "LABELS")
+    times = np.asarray(event.get("TIMES", np.zeros((2, 0))), dtype=float)
+    times = times.T if times.ndim == 2 and times.shape[0] == 2 else times.reshape(-1, 2)
     ev_times = [
         60 * times[i, 0] + times[i, 1] for i, lab in enumerate(ev_labels) if lab.lower() == name and i < len(times)
     ]
     if ev_times:
         return _contact_from_event(t, min(ev_times), rate)
     if contact_channel is None:
-        return np.full(len(t), NO_CONTACT)
+        return np.full(n, NO_CONTACT)
     events = ", ".join(sorted(set(ev_labels))) or "none"
     raise DataFormatError(
         f"{path}: no analog channel or event {contact_channel!r} (analog channels: "

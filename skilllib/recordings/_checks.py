@@ -29,6 +29,9 @@ from ._timing import MIN_RATE_HZ, MIXED_FRACTION, RATE_TOLERANCE, TRIM, regular_
 
 MIN_SAMPLES = 5  #: fewer samples than this make a trial invalid
 MAX_RANGE_M = 2.0  #: a trial spanning more than this (m) has wrong units or a glitch (device: 0.38 m)
+#: with the unit stated (header, --units): only a span beyond this (m) is a glitch (a lab's capture volume
+#: is rarely over 15 m across; overground gait spans a few metres and must be read)
+MAX_KNOWN_RANGE_M = 20.0
 MAX_TYPICAL_SPEED = 20.0  #: m/s; a typical (median over trials of the 95th percentile) speed above it: wrong units
 
 
@@ -41,7 +44,9 @@ def trial_problem(
     loc: Callable[[int], str],
 ) -> str:
     """Reason why one trial's samples are unusable ('' when fine); time/units checks come later.
-    ``rows``: the trial's rows (kept-row numbers, ascending); ``line(r)``/``loc(r)`` name row r."""
+    Missing (NaN) positions are not a problem here: they are gaps, filled or judged by
+    :func:`skilllib.recordings.repair_trial`. ``rows``: the trial's rows (kept-row numbers, ascending);
+    ``line(r)``/``loc(r)`` name row r."""
     n = len(rows)
     if rows[-1] - rows[0] + 1 != n:
         gap = int(np.flatnonzero(np.diff(rows) > 1)[0])
@@ -53,12 +58,10 @@ def trial_problem(
         return f"too few samples ({n}; need at least {MIN_SAMPLES})"
     if np.isnan(t).any():
         return f"time stamp missing at {loc(rows[np.flatnonzero(np.isnan(t))[0]])}"
-    for j, name in enumerate(POSITION_COLUMNS):
-        bad = ~np.isfinite(pos[:, j])
+    for j, name in enumerate(POSITION_COLUMNS):  # NaN (missing) positions are gaps (skilllib.recordings)
+        bad = np.isinf(pos[:, j])
         if bad.any():
-            k = int(np.flatnonzero(bad)[0])
-            what = "missing (NaN)" if np.isnan(pos[k, j]) else "infinite"
-            return f"{name} is {what} at {loc(rows[k])}"
+            return f"{name} is infinite at {loc(rows[int(np.flatnonzero(bad)[0])])}"
     if np.isnan(contact).any():
         return f"contact flag missing at {loc(rows[np.flatnonzero(np.isnan(contact))[0]])}"
     d = np.diff(t)
@@ -88,7 +91,7 @@ def trial_problems(
     first = np.array([r[0] for r in rows], dtype=np.int64)
     last = np.array([r[-1] for r in rows], dtype=np.int64)
     flagged = (last - first + 1 != count) | (count < MIN_SAMPLES)
-    bad_row = np.isnan(t) | ~np.isfinite(pos).all(axis=1) | np.isnan(contact)
+    bad_row = np.isnan(t) | np.isinf(pos).any(axis=1) | np.isnan(contact)  # NaN positions: gaps, repaired later
     same = trial_of_row[1:] == trial_of_row[:-1]
     bad_step = same & ~(np.diff(t) > 0)  # backwards or repeated (NaN is caught above)
     flagged |= np.bincount(trial_of_row[bad_row], minlength=n_trials) > 0
@@ -166,7 +169,12 @@ def corpus_rate(source: str, med_dt: np.ndarray, mean_dt: np.ndarray) -> tuple[f
     ok = ~np.isnan(med_dt)
     ref = float(np.median(med_dt[ok]))
     if ref > 1 / MIN_RATE_HZ:
-        raise DataFormatError(f"{source}: {timing.time_unit_advice(ref)}")
+        advice = timing.time_unit_advice(ref)
+        option = next(
+            (o for word, o in (("like milliseconds", "ms"), ("like microseconds", "us")) if word in advice), ""
+        )
+        hint = f", or give the unit: --time-unit {option}" if option else ""
+        raise DataFormatError(f"{source}: {advice}{hint}")
     off = np.abs(med_dt / ref - 1) > RATE_TOLERANCE  # NaN compares False
     if off.sum() > MIXED_FRACTION * ok.sum():
         rates = pd.Series(np.round(1 / mean_dt[ok], 1)).value_counts()
@@ -191,18 +199,32 @@ def _check_rates(source: str, stats: TrialStats, reasons: list[str], rate: tuple
     return dt
 
 
-def _check_units(source: str, stats: TrialStats, reasons: list[str], dt: float, corpus_checked: bool = False) -> None:
+def _check_units(
+    source: str,
+    stats: TrialStats,
+    reasons: list[str],
+    dt: float,
+    corpus_checked: bool = False,
+    units_known: bool = False,
+) -> None:
     """Positions in millimetres (or centimetres) raise (unless ``corpus_checked``: the caller checked the
-    whole corpus, :func:`check_corpus_units`); a single trial with a huge span is invalid."""
+    whole corpus, :func:`check_corpus_units`); a single trial with a huge span is invalid. When the unit is
+    stated (``units_known``: a file header's or ``--units``) it is believed: no "not metres" check, and only
+    a span beyond :data:`MAX_KNOWN_RANGE_M` (a glitch, not a movement) makes a trial invalid."""
     idx = np.array([i for i in range(len(reasons)) if not reasons[i]], dtype=np.int64)
     if not idx.size:
         return
     span = stats.span[idx]
-    if not corpus_checked:
+    if not corpus_checked and not units_known:
         check_corpus_units(source, span, stats.step95[idx] / dt)
+    limit = MAX_KNOWN_RANGE_M if units_known else MAX_RANGE_M
     for j, i in enumerate(idx):
-        if span[j] > MAX_RANGE_M:
-            reasons[i] = f"positions span {span[j]:.3g} m (more than {MAX_RANGE_M:g} m): a glitch or wrong units"
+        if span[j] > limit:
+            reasons[i] = (
+                f"positions span {span[j]:.3g} m (more than {limit:g} m, with the unit stated): a glitch"
+                if units_known
+                else f"positions span {span[j]:.3g} m (more than {limit:g} m): a glitch or wrong units"
+            )
 
 
 def check_corpus_units(source: str, span: np.ndarray, speed95: np.ndarray) -> None:

@@ -1,4 +1,9 @@
-"""A folder of one-trial files (C3D, TRC, per-trial CSV) as one long table, with the files it could not read.
+"""A folder of one-trial files (C3D, TRC, Vicon Nexus CSV, per-trial CSV) as one long table, with the files it
+could not read.
+
+A ``.csv`` (also compressed) whose first line is a Nexus section name (``Trajectories``, ...) is a Nexus
+export, read like a C3D file (:func:`skilllib.recordings.read_nexus`); any other is a per-trial table
+(columns ``t, x, y, z`` and perhaps ``contact``; separator detected or ``sep``).
 
 **Naming rule** (identifiers are text, exactly as in the file names: ``01`` and ``1`` are two ids):
 
@@ -22,6 +27,7 @@ no file at all can be read.
 
 from __future__ import annotations
 
+import io
 import re
 from collections.abc import Mapping
 from pathlib import Path
@@ -32,8 +38,10 @@ import pandas as pd
 
 from ._c3d import read_c3d
 from ._columns import ID_COLUMNS
+from ._csv import _read_text, check_alignment, columns_found, detect_sep, parse_sep
 from ._errors import DataFormatError
-from ._mapping import map_frame, rename_columns, unit_factor, up_axis_rotation
+from ._mapping import map_frame, rename_columns, time_unit_factor, unit_factor, up_axis_rotation
+from ._nexus import is_nexus, read_nexus
 from ._recordings import natural_key
 from ._trc import read_trc
 
@@ -65,12 +73,13 @@ class FileProblem(NamedTuple):
 
 
 def file_kind(path: Path) -> str | None:
-    """``'c3d'``, ``'trc'``, ``'csv'`` (also compressed) or None, from the file name (case ignored)."""
+    """``'c3d'``, ``'trc'``, ``'nexus'``, ``'csv'`` (also compressed) or None: from the file name (case
+    ignored), and for a ``.csv`` (or ``.txt``) from its first line (a Nexus section name: ``'nexus'``)."""
     name = path.name.lower()
     for kind, suffixes in (("c3d", C3D_SUFFIXES), ("trc", TRC_SUFFIXES), ("csv", CSV_SUFFIXES)):
         if name.endswith(suffixes):
-            return kind
-    return None
+            return "nexus" if kind == "csv" and is_nexus(path) else kind
+    return "nexus" if is_nexus(path) else None
 
 
 def file_stem(path: Path) -> str:
@@ -123,23 +132,24 @@ def trial_ids(stem: str, folder: str | None, pattern: re.Pattern | None) -> tupl
     return participant, trial
 
 
-def read_trial_csv(path: Path, *, columns: Mapping[str, str] | None = None) -> pd.DataFrame:
+def read_trial_csv(path: Path, *, columns: Mapping[str, str] | None = None, sep: str | None = None) -> pd.DataFrame:
     """One trial's CSV (compression inferred from the name): columns ``t`` (s), ``x, y, z`` and, when
-    present, ``contact``, after renaming by ``columns`` (units and axes: :func:`map_frame`). A table
-    with participant or trial columns holds several trials and is refused."""
+    present, ``contact``, after renaming by ``columns`` (units and axes: :func:`map_frame`). The separator
+    is ``sep`` or detected (:func:`skilllib.recordings.detect_sep`); a row with more or fewer fields than
+    the header is refused (:func:`check_alignment`). A table with participant or trial
+    columns holds several trials and is refused."""
+    text = _read_text(path)
+    if not text.strip():
+        raise DataFormatError(f"{path}: file is empty")
+    sep = parse_sep(sep) or detect_sep(text)
+    check_alignment(path, text, sep)
     try:
-        df = pd.read_csv(path, skipinitialspace=True)
-    except (
-        pd.errors.ParserError,
-        pd.errors.EmptyDataError,
-        UnicodeDecodeError,
-        OSError,
-        ValueError,
-        ImportError,
-    ) as e:  # ImportError: .csv.zst without the zstandard package
+        df = pd.read_csv(io.StringIO(text), sep=sep, skipinitialspace=True)
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, ValueError) as e:
         msg = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
         raise DataFormatError(f"{path}: not a readable CSV table ({msg[:200]})") from None
     df = df.rename(columns=lambda c: str(c).strip())
+    df.attrs["sep"] = sep
     ids = [c for c in df.columns if (columns or {}).get(c, c) in ID_COLUMNS]
     if ids:
         raise DataFormatError(
@@ -151,10 +161,38 @@ def read_trial_csv(path: Path, *, columns: Mapping[str, str] | None = None) -> p
     missing = [c for c in TRIAL_COLUMNS[:4] if c not in df.columns]
     if missing:
         raise DataFormatError(
-            f"{path}: required column {missing[0]!r} missing (columns: {', '.join(df.columns)}); "
+            f"{path}: required column {missing[0]!r} missing ({columns_found(df.columns, sep)}); "
             f"rename with --columns old=new"
         )
     return df[[c for c in TRIAL_COLUMNS if c in df.columns]]
+
+
+def _largest_span(frames: list[pd.DataFrame]) -> pd.DataFrame:
+    """Of one file's markers read as trials, the one whose positions span most (the moving one)."""
+
+    def span(df: pd.DataFrame) -> float:
+        p = df[["x", "y", "z"]].to_numpy(dtype=float)
+        p = p[np.isfinite(p).all(axis=1)]
+        return float(np.ptp(p, axis=0).max()) if len(p) else -1.0
+
+    return max(frames, key=span)
+
+
+def _read_markers(path: Path, kind: str, marker: str | None, **opts: object) -> pd.DataFrame:
+    """A C3D or TRC file's marker; a list ``"A,B"``: the one of them (in the file) that moves most."""
+    read = read_c3d if kind == "c3d" else read_trc
+    names = [m for m in (marker or "").split(",") if m.strip()]
+    if len(names) < 2:
+        return read(path, marker=marker, **opts)
+    frames, errors = [], []
+    for name in names:
+        try:
+            frames.append(read(path, marker=name.strip(), **opts))
+        except DataFormatError as e:
+            errors.append(e)
+    if not frames:
+        raise errors[0]
+    return _largest_span(frames)
 
 
 def read_trial_file(
@@ -167,29 +205,45 @@ def read_trial_file(
     up_axis: str | None = None,
     contact_height: float | None = None,
     columns: Mapping[str, str] | None = None,
+    sep: str | None = None,
+    time_unit: str | None = None,
 ) -> pd.DataFrame:
-    """One C3D, TRC or per-trial CSV file as one trial in the book's frame (columns ``t, x, y, z,
+    """One C3D, TRC, Nexus or per-trial CSV file as one trial in the book's frame (columns ``t, x, y, z,
     contact``; s, m, y up, 0/1 or NaN where the file's own contact flag is empty).
 
-    C3D and TRC files carry their unit in the header (``units`` replaces it); a CSV is in ``units``
-    (None: m) and renamed by ``columns``. ``up_axis`` and ``contact_height`` as in :func:`map_frame`.
-    Raises :class:`~skilllib.recordings.DataFormatError` naming the file.
+    C3D, TRC and Nexus files carry their unit in the header (``units`` replaces it); a CSV is in
+    ``units`` (None: m), its ``t`` in ``time_unit`` (None: s), split at ``sep`` (None: detected) and
+    renamed by ``columns``. ``marker`` may list several names (``"RFTP,LFTP"``): the one of them that
+    moves most in the file. ``up_axis`` and ``contact_height`` as in :func:`map_frame`. The frame's
+    ``attrs["units"]`` is the unit the file (or ``units``) states, None when nothing states it. Raises
+    :class:`~skilllib.recordings.DataFormatError` naming the file.
     """
     path = Path(path)
     kind = file_kind(path)
     if kind == "c3d":
-        df = read_c3d(
-            path, marker=marker, contact_channel=contact_channel, contact_threshold=contact_threshold, units=units
+        df = _read_markers(
+            path, kind, marker, contact_channel=contact_channel, contact_threshold=contact_threshold, units=units
         )
     elif kind == "trc":
-        df = read_trc(path, marker=marker, units=units)
+        df = _read_markers(path, kind, marker, units=units)
+    elif kind == "nexus":
+        df = read_nexus(path, marker=marker, units=units)
     elif kind == "csv":
-        df = read_trial_csv(path, columns=columns)
+        df = read_trial_csv(path, columns=columns, sep=sep)
     else:
         raise DataFormatError(f"{path}: not a .c3d, .trc or .csv file")
-    return map_frame(
-        df, units=units if kind == "csv" else None, up_axis=up_axis, contact_height=contact_height, source=str(path)
+    # a reader that does not set attrs["units"] refuses a file without a unit: its header states one
+    stated = units if units is not None else None if kind == "csv" else df.attrs.get("units", "header")
+    out = map_frame(
+        df,
+        units=units if kind == "csv" else None,
+        up_axis=up_axis,
+        contact_height=contact_height,
+        source=str(path),
+        time_unit=time_unit if kind == "csv" else None,
     )
+    out.attrs["units"] = stated
+    return out
 
 
 def _reason(e: Exception, path: Path) -> str:
@@ -226,8 +280,11 @@ def read_folder(
     contact_height: float | None = None,
     columns: Mapping[str, str] | None = None,
     name_pattern: str | re.Pattern | None = None,
+    sep: str | None = None,
+    time_unit: str | None = None,
 ) -> tuple[pd.DataFrame, list[FileProblem]]:
-    """Every ``.c3d``, ``.trc`` and ``.csv`` (also compressed) file of ``path`` as one trial each.
+    """Every ``.c3d``, ``.trc`` and ``.csv`` (also compressed; Vicon Nexus exports among them) file of
+    ``path`` as one trial each.
 
     Returns ``(frame, problems)``: ``frame`` is the long table ``participant, trial, t, x, y, z,
     contact`` and ``file``, ``sample`` (the file, relative to ``path``, and the 1-based sample in it) (ids as
@@ -237,7 +294,8 @@ def read_folder(
     no ids first), for the caller to mark those trials invalid. The options are those of
     :func:`read_trial_file`; the naming rule (sub-folder or ``PARTICIPANT_TRIAL`` name, or
     ``name_pattern``) is in the module docstring. Two files giving one (participant, trial) are a
-    problem for the second.
+    problem for the second. The frame's ``attrs["units"]`` is the unit stated for every file read (the
+    headers' or ``units``; ``"mixed"`` when they differ), None when some file states none.
 
     Parameters
     ----------
@@ -265,6 +323,10 @@ def read_folder(
     name_pattern : str, re.Pattern or None
         Regular expression for the file names of a folder (text), with named groups ``trial`` and,
         optionally, ``participant``; None: the naming rule of :func:`read_folder`.
+    sep : str or None
+        The separator of the per-trial CSV files (text: ``","``, ``"tab"``, ``";"``); None: detected.
+    time_unit : str or None
+        The unit of the per-trial CSV files' ``t`` (text: ``"s"``, ``"ms"``, ``"us"``); None: s.
 
     Returns
     -------
@@ -288,6 +350,9 @@ def read_folder(
         unit_factor(units, str(root))
     if up_axis is not None:
         up_axis_rotation(up_axis)
+    if time_unit is not None:
+        time_unit_factor(time_unit, str(root))
+    parse_sep(sep)
     found, deep = _scan(root)
     if not found and not deep:
         raise DataFormatError(f"{root}: no .c3d, .trc or .csv files in the folder or its sub-folders")
@@ -299,6 +364,8 @@ def read_folder(
         up_axis=up_axis,
         contact_height=contact_height,
         columns=columns,
+        sep=sep,
+        time_unit=time_unit,
     )
     named, problems = [], []
     for p, folder in found:
@@ -310,7 +377,7 @@ def read_folder(
         FileProblem(str(p), None, None, f"in a sub-sub-folder: only {root}/<participant>/<file> is read") for p in deep
     ]
     named.sort(key=lambda r: (natural_key(r[0]), natural_key(r[1]), str(r[2])))
-    frames, seen = [], {}
+    frames, seen, stated = [], {}, set()
     for participant, trial, p in named:
         if (participant, trial) in seen:
             problems.append(
@@ -328,6 +395,7 @@ def read_folder(
         except DataFormatError as e:
             problems.append(FileProblem(str(p), participant, trial, _reason(e, p)))
             continue
+        stated.add(df.attrs.get("units"))
         df = df.reindex(columns=list(TRIAL_COLUMNS))
         df.insert(0, "trial", trial)
         df.insert(0, "participant", participant)
@@ -343,4 +411,5 @@ def read_folder(
     frame = pd.concat(frames, ignore_index=True)
     frame["participant"] = frame["participant"].astype(object)
     frame["trial"] = frame["trial"].astype(object)
+    frame.attrs["units"] = None if None in stated else stated.pop() if len(stated) == 1 else "mixed"
     return frame, problems

@@ -11,9 +11,14 @@ path                          read by                                           
 a folder                      :func:`~skilllib.recordings.read_folder`                   one per file
 ``*.c3d``                     :func:`~skilllib.recordings.read_c3d` (c3d)                   one
 ``*.trc``                     :func:`~skilllib.recordings.read_trc`                         one
-anything else (``.csv``,      :func:`read_csv_table` (pandas; compression from the name:     many
-``.csv.gz``, ``.zip``, ...)   gzip, zip, bz2, xz, zstd)
+a Vicon Nexus CSV export      :func:`~skilllib.recordings.read_nexus` (first line             one
+(``.csv``, ``.csv.gz``, ...)  ``Trajectories``, ...; recognised by content)
+anything else (``.csv``,      :func:`read_csv_table` (pandas; compression from the name:     many (one
+``.csv.gz``, ``.txt``, ...)   gzip, zip, bz2, xz, zstd; separator detected or ``sep``)       without ids)
 ============================  =============================================================  ============
+
+A table with neither a ``participant`` nor a ``trial`` column is one recording named after the file
+(:func:`~skilllib.recordings.file_ids`: the stem split at its last ``_``, like a single C3D file).
 
 Then :func:`~skilllib.recordings.map_frame` renames columns, converts units, rotates the vertical
 axis to +y and fills contact from the surface height, as the options ask.
@@ -23,11 +28,17 @@ Options (the command line's flags in brackets): ``marker`` (``--marker NAME``), 
 ``contact_height`` (``--contact-height M``), ``units`` (``--units m|cm|mm``), ``up_axis``
 (``--up-axis y|-y|z|-z|x|-x``), ``columns`` (``--columns old=new,...``, parsed by
 :func:`~skilllib.recordings.parse_columns`), ``name_pattern`` (a regular expression for file names
-in a folder).
+in a folder), ``sep`` (``--sep , | ; | tab``), ``time_unit`` (``--time-unit s|ms|us``).
+
+**Units.** When the unit of the positions is stated (a C3D, TRC or Nexus header, or ``units``), it is
+believed: the "not metres" guesses of :mod:`skilllib.recordings` are skipped and only a trial spanning
+more than :data:`~skilllib.recordings.MAX_KNOWN_RANGE_M` is a glitch (``units_known`` of
+:func:`~skilllib.recordings.recordings_from_frame`).
 """
 
 from __future__ import annotations
 
+import io
 import re
 from collections.abc import Mapping
 from pathlib import Path
@@ -37,13 +48,13 @@ import pandas as pd
 
 from ._c3d import read_c3d
 from ._columns import COLUMNS, ID_COLUMNS, POSITION_COLUMNS
-from ._csv import read_table
+from ._csv import _read_text, check_alignment, detect_sep, file_stem_any, parse_sep, read_table, with_file_ids
+from ._defects import MAX_GAP_S
 from ._errors import DataFormatError, check_file, quote
 from ._folder import (
     FileProblem,
     compile_pattern,
     file_kind,
-    file_stem,
     read_folder,
     read_trial_file,
     trial_ids,
@@ -94,11 +105,15 @@ def _csv_error(path: Path, e: Exception) -> DataFormatError:
         return DataFormatError(f"{path}: file is empty")
     if isinstance(e, UnicodeDecodeError):
         return DataFormatError(f"{path}: not a text (UTF-8) CSV file")
+    if isinstance(e, DataFormatError):
+        return e
     msg = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
     return DataFormatError(f"{path}: cannot be read as a (compressed) CSV file ({msg[:200]})")
 
 
-def read_csv_table(path: str | Path, *, columns: Mapping[str, str] | None = None) -> pd.DataFrame:
+def read_csv_table(
+    path: str | Path, *, columns: Mapping[str, str] | None = None, sep: str | None = None
+) -> pd.DataFrame:
     """A CSV table as pandas reads it (compression inferred from the name), identifiers as text.
 
     The columns that are, or that ``columns`` renames to, ``participant`` and ``trial`` are read as
@@ -106,7 +121,9 @@ def read_csv_table(path: str | Path, *, columns: Mapping[str, str] | None = None
     an empty id is ``''`` (and a blank line NaN in every column, as the validation expects). Other
     columns keep pandas' defaults (numbers; ``NA``, ``nan``, empty are missing). Column names are not
     renamed here (:func:`map_frame` does it); blank lines are kept so that row ``r`` is file line
-    ``r + 2``.
+    ``r + 2``. The separator is ``sep`` or detected (:func:`~skilllib.recordings.detect_sep`), kept in
+    ``attrs["sep"]``; a row with more or fewer fields than the header is refused
+    (``check_alignment``).
 
     Parameters
     ----------
@@ -114,6 +131,8 @@ def read_csv_table(path: str | Path, *, columns: Mapping[str, str] | None = None
         The CSV file (text).
     columns : mapping of str to str or None
         Column renames ``{old: new}`` (text), to find the id columns; None: no renaming.
+    sep : str or None
+        The separator (text: ``","``, ``"tab"`` or ``"\\t"``, ``";"``); None: detected.
 
     Returns
     -------
@@ -130,10 +149,16 @@ def read_csv_table(path: str | Path, *, columns: Mapping[str, str] | None = None
     check_file(path, "CSV")
     opts = dict(skipinitialspace=True, skip_blank_lines=False)
     try:
-        names = [str(c) for c in pd.read_csv(path, nrows=0, **opts).columns]
+        text = _read_text(path)
+        if not text.strip():
+            raise pd.errors.EmptyDataError("empty")
+        sep = parse_sep(sep) or detect_sep(text)
+        check_alignment(path, text, sep)
+        names = [str(c) for c in pd.read_csv(io.StringIO(text), sep=sep, nrows=0, **opts).columns]
         ids = [c for c in names if (columns or {}).get(c.strip(), c.strip()) in ID_COLUMNS]
         df = pd.read_csv(
-            path,
+            io.StringIO(text),
+            sep=sep,
             dtype={c: str for c in ids},
             keep_default_na=False,
             na_values={c: list(DEFAULT_NA) for c in names if c not in ids},
@@ -156,6 +181,7 @@ def read_csv_table(path: str | Path, *, columns: Mapping[str, str] | None = None
             col = df[c].astype(object)
             col[blank] = np.nan
             df[c] = col
+    df.attrs["sep"] = sep
     return df
 
 
@@ -170,12 +196,16 @@ def read_any(
     contact_height: float | None = None,
     columns: Mapping[str, str] | str | None = None,
     name_pattern: str | re.Pattern | None = None,
+    sep: str | None = None,
+    time_unit: str | None = None,
 ) -> tuple[pd.DataFrame, list[FileProblem]]:
-    """Read recordings from a folder, a ``.c3d`` or ``.trc`` file (one trial) or a CSV table (many).
+    """Read recordings from a folder, a ``.c3d``, ``.trc`` or Nexus file (one trial) or a CSV table (many).
 
-    The dispatch table and the options are in the module docstring. A single C3D/TRC file is named like a
-    file directly in a folder: ``PARTICIPANT_TRIAL`` split at the last ``_`` (or ``name_pattern``); a stem
-    without ``_`` is participant and trial both.
+    The dispatch table and the options are in the module docstring. A single C3D/TRC/Nexus file, and a
+    table without ``participant`` and ``trial`` columns, is named like a file directly in a folder:
+    ``PARTICIPANT_TRIAL`` split at the last ``_`` (or ``name_pattern``); a stem without ``_`` is
+    participant and trial both. The frame's ``attrs["units"]`` is the unit stated (a header's, or
+    ``units``), None when nothing states it.
 
     Parameters
     ----------
@@ -204,6 +234,10 @@ def read_any(
     name_pattern : str, re.Pattern or None
         Regular expression for the file names of a folder (text), with named groups ``trial`` and,
         optionally, ``participant``; None: the naming rule of :func:`read_folder`.
+    sep : str or None
+        The separator of a CSV table (text: ``","``, ``"tab"`` or ``"\\t"``, ``";"``); None: detected.
+    time_unit : str or None
+        The unit of a CSV table's ``t`` (text: ``"s"``, ``"ms"``, ``"us"``); None: s.
 
     Returns
     -------
@@ -233,17 +267,13 @@ def read_any(
             contact_height=contact_height,
             columns=cols,
             name_pattern=name_pattern,
+            sep=sep,
+            time_unit=time_unit,
         )
     kind = file_kind(path)
-    if kind in ("c3d", "trc"):
-        check_file(path, kind.upper())  # before the name is read: a missing file says so
-        stem = file_stem(path)
-        try:
-            participant, trial = trial_ids(stem, None, compile_pattern(name_pattern))
-        except ValueError:
-            if name_pattern is not None:
-                raise DataFormatError(f"{path}: name {stem!r} does not match the name pattern") from None
-            participant, trial = stem, stem
+    if kind in ("c3d", "trc", "nexus"):
+        check_file(path, {"nexus": "Nexus CSV"}.get(kind, kind.upper()))  # before the name is read
+        participant, trial = single_file_ids(path, name_pattern)
         df = read_trial_file(
             path,
             marker=marker,
@@ -257,10 +287,65 @@ def read_any(
         df.insert(0, "participant", participant)
         df[list(ID_COLUMNS)] = df[list(ID_COLUMNS)].astype(object)
         return df, []
-    table = read_csv_table(path, columns=cols)
-    return map_frame(
-        table, columns=cols, units=units, up_axis=up_axis, contact_height=contact_height, source=str(path), first_line=2
-    ), []
+    table = read_csv_table(path, columns=cols, sep=sep)
+    if cols:
+        table = rename_columns(table, cols, str(path))
+    table = _one_recording(table, path, name_pattern)
+    out = map_frame(
+        table,
+        units=units,
+        up_axis=up_axis,
+        contact_height=contact_height,
+        source=str(path),
+        first_line=2,
+        time_unit=time_unit,
+    )
+    out.attrs["units"] = units
+    return out, []
+
+
+def single_file_ids(path: str | Path, name_pattern: str | re.Pattern | None = None) -> tuple[str, str]:
+    """(participant, trial) of a file read on its own as one recording (a C3D, TRC or Nexus file, a table
+    without id columns): the stem split at its last ``_``, or ``name_pattern``; a stem without ``_`` is
+    participant and trial both.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file (text).
+    name_pattern : str, re.Pattern or None
+        Regular expression with named groups ``trial`` and, optionally, ``participant`` (text); None: the
+        rule above.
+
+    Returns
+    -------
+    participant, trial : str
+        The ids (text).
+
+    Raises
+    ------
+    DataFormatError
+        When the name does not match ``name_pattern``.
+    """
+    path = Path(path)
+    stem = file_stem_any(path)
+    try:
+        return trial_ids(stem, None, compile_pattern(name_pattern))
+    except ValueError:
+        if name_pattern is not None:
+            raise DataFormatError(f"{path}: name {stem!r} does not match the name pattern") from None
+        return stem, stem
+
+
+def _one_recording(table: pd.DataFrame, path: Path, name_pattern: str | re.Pattern | None) -> pd.DataFrame:
+    """``table`` with ids from the file's name when it has neither a participant nor a trial column."""
+    out = with_file_ids(table, path)
+    if out is not table:
+        participant, trial = single_file_ids(path, name_pattern)
+        have = out["participant"].notna().to_numpy()
+        out.loc[have, "participant"] = participant
+        out.loc[have, "trial"] = trial
+    return out
 
 
 def _numeric_text(df: pd.DataFrame, lines: np.ndarray, source: str) -> pd.DataFrame:
@@ -299,11 +384,16 @@ def load_recordings(
     contact_threshold: float | None = None,
     contact_height: float | None = None,
     name_pattern: str | re.Pattern | None = None,
+    sep: str | None = None,
+    time_unit: str | None = None,
+    max_gap_s: float = MAX_GAP_S,
+    fill: str = "cubic",
 ) -> Recordings:
     """Validated :class:`~skilllib.recordings.Recordings` from a path, a DataFrame or Recordings.
 
-    A path is a folder, C3D, TRC or CSV file (see :func:`read_any`), mapped by the options (module
-    docstring). A CSV is read as text with its physical line numbers
+    A path is a folder, C3D, TRC, Nexus or CSV file (see :func:`read_any`), mapped by the options (module
+    docstring). A stated unit (a header's, or ``units``) is believed (module docstring: Units). A CSV is
+    read as text with its physical line numbers
     (:func:`skilllib.recordings.read_table`), so that messages name file lines; its columns are renamed
     before anything else, so ``--columns`` may name the file's own columns. Files of a folder that cannot
     be read are kept as ``invalid`` trials with their reason (file name and problem), never dropped;
@@ -336,6 +426,16 @@ def load_recordings(
     name_pattern : str, re.Pattern or None
         Regular expression for the file names of a folder (text), with named groups ``trial`` and,
         optionally, ``participant``; None: the naming rule of :func:`read_folder`.
+    sep : str or None
+        The separator of a CSV table (text: ``","``, ``"tab"`` or ``"\\t"``, ``";"``); None: detected.
+    time_unit : str or None
+        The unit of a table's ``t`` (text: ``"s"``, ``"ms"``, ``"us"``), divided into seconds; None: s.
+    max_gap_s : float
+        The longest gap of missing, frozen or jumping positions filled by interpolation (s; default
+        0.1); longer ones before contact make a trial invalid, after contact cut it
+        (:func:`skilllib.recordings.repair_trial`).
+    fill : str
+        How short gaps are filled: ``"cubic"`` or ``"linear"`` (text).
 
     Returns
     -------
@@ -347,48 +447,63 @@ def load_recordings(
     DataFormatError
         For what cannot be read at all.
     """
+    repair = dict(max_gap_s=max_gap_s, fill=fill)  # real-data defects (skilllib.recordings.repair_trial)
     given = (columns, units, up_axis, marker, contact_channel, contact_threshold, contact_height, name_pattern)
+    given += (time_unit,)
+    parse_sep(sep)  # a wrong --sep fails before anything is read
     if all(v is None for v in given):  # nothing to map: the book's format as it is
         if isinstance(data, Recordings):
             return data
         if isinstance(data, pd.DataFrame):
-            return recordings_from_frame(data)
+            return recordings_from_frame(data, **repair)
         path = Path(data)
-        if is_parquet(path) or not path.is_dir() and file_kind(path) not in ("c3d", "trc"):
-            return read_recordings(path)  # pyarrow's reader for a plain CSV; Parquet files and folders
+        if is_parquet(path) or not path.is_dir() and file_kind(path) not in ("c3d", "trc", "nexus"):
+            return read_recordings(path, sep=sep, **repair)  # pyarrow's CSV reader; Parquet files, folders
     opts = dict(
         columns=parse_columns(columns) if isinstance(columns, str) else columns,
         units=units,
         up_axis=up_axis,
         contact_height=contact_height,
+        time_unit=time_unit,
     )
+    known = units is not None
     if isinstance(data, Recordings):
         data = data.frame
     if isinstance(data, pd.DataFrame):
-        return recordings_from_frame(map_frame(data, **opts), "<DataFrame>")
+        return recordings_from_frame(map_frame(data, **opts), "<DataFrame>", units_known=known, **repair)
     path = Path(data)
     kind = None if path.is_dir() else file_kind(path)
-    if not path.is_dir() and kind not in ("c3d", "trc"):  # a CSV table, perhaps compressed
-        table, lines = read_table(path)
+    if not path.is_dir() and kind not in ("c3d", "trc", "nexus"):  # a CSV table, perhaps compressed
+        table, lines = read_table(path, sep)
         if opts["columns"]:
             table = rename_columns(table, opts["columns"], str(path))
+        table = _one_recording(table, path, name_pattern)
         table = _numeric_text(table, lines, str(path))
-        mapped = map_frame(table, units=units, up_axis=up_axis, contact_height=contact_height, source=str(path))
-        return recordings_from_frame(mapped, str(path), lines=lines)
+        mapped = map_frame(
+            table,
+            units=units,
+            up_axis=up_axis,
+            contact_height=contact_height,
+            source=str(path),
+            time_unit=time_unit,
+        )
+        return recordings_from_frame(mapped, str(path), lines=lines, units_known=known, **repair)
     frame, problems = read_any(
         path,
         marker=marker,
         contact_channel=contact_channel,
         contact_threshold=contact_threshold,
         name_pattern=name_pattern,
+        sep=sep,
         **opts,
     )
+    known = known or frame.attrs.get("units") is not None
     places = None
     if "file" in frame.columns:
         places = (frame["file"].astype(str) + ", sample " + frame["sample"].astype(str)).to_numpy()
     elif kind is not None:
         places = np.array([f"sample {i + 1}" for i in range(len(frame))], dtype=object)
-    rec = recordings_from_frame(frame[list(COLUMNS)], str(path), places=places)
+    rec = recordings_from_frame(frame[list(COLUMNS)], str(path), places=places, units_known=known, **repair)
     return _with_problems(rec, problems, path)
 
 
@@ -412,6 +527,9 @@ def _with_problems(rec: Recordings, problems: list[FileProblem], root: Path) -> 
                 "status": "invalid",
                 "reason": f"file {rel}: {q.reason}",
                 "timing": "",
+                "repairs": "",
+                "n_repaired": 0,
+                "n_dropped": 0,
             }
         )
     trials = pd.concat([rec.trials, pd.DataFrame(rows)], ignore_index=True)
@@ -422,12 +540,14 @@ def _with_problems(rec: Recordings, problems: list[FileProblem], root: Path) -> 
         source=rec.source,
         _rows={**rec._rows, **extra},
         _resampled=rec._resampled,
+        _repaired=rec._repaired,
     )
 
 
 __all__ = [
     "load_recordings",
     "read_any",
+    "single_file_ids",
     "read_folder",
     "read_c3d",
     "read_trc",

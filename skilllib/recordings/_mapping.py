@@ -5,7 +5,8 @@ The book's frame (:mod:`skilllib.recordings`): positions in m, ``x`` mediolatera
 another length unit or another vertical axis into it, in this order:
 
 1. **columns**: ``{old: new}`` renames (``--columns old=new,...``, parsed by :func:`parse_columns`).
-2. **units**: ``x, y, z`` multiplied by :data:`UNIT_FACTORS` (``m`` 1, ``cm`` 0.01, ``mm`` 0.001).
+2. **units**: ``x, y, z`` multiplied by :data:`UNIT_FACTORS` (``m`` 1, ``cm`` 0.01, ``mm`` 0.001); ``t``
+   by :data:`TIME_UNIT_FACTORS` (``--time-unit s|ms|us``: 1, 0.001, 0.000001).
 3. **vertical axis**: ``p_book = R p_lab`` with the proper rotation (``det R = +1``, no mirroring)
    :data:`UP_AXIS_ROTATIONS` that sends the lab's up axis to the book's ``+y``. In
    ``(x, y, z)_book`` terms:
@@ -39,9 +40,11 @@ import numpy as np
 import pandas as pd
 
 from ._columns import POSITION_COLUMNS
+from ._csv import columns_found
 from ._errors import DataFormatError, quote
 
 UNIT_FACTORS: dict[str, float] = {"m": 1.0, "cm": 0.01, "mm": 0.001}  #: metres per unit
+TIME_UNIT_FACTORS: dict[str, float] = {"s": 1.0, "ms": 1e-3, "us": 1e-6}  #: seconds per time unit
 
 #: ``R`` per up axis: ``p_book = R @ p_lab`` (column vectors ``(x, y, z)``); each is proper (det +1)
 UP_AXIS_ROTATIONS: dict[str, np.ndarray] = {
@@ -63,6 +66,32 @@ def unit_factor(units: str, source: str = "<DataFrame>") -> float:
     if key not in UNIT_FACTORS:
         raise DataFormatError(f"{source}: unknown length unit {units!r} (known: {', '.join(UNIT_FACTORS)})")
     return UNIT_FACTORS[key]
+
+
+def time_unit_factor(time_unit: str, source: str = "<DataFrame>") -> float:
+    """Seconds per ``time_unit`` (``s``, ``ms``, ``us``; ``µs`` too; case and spaces ignored).
+
+    Parameters
+    ----------
+    time_unit : str
+        The unit of the table's ``t`` (text).
+    source : str
+        The table's name in messages (text).
+
+    Returns
+    -------
+    float
+        Seconds per unit (s).
+
+    Raises
+    ------
+    DataFormatError
+        For any other unit.
+    """
+    key = str(time_unit).strip().lower().replace("µ", "u")
+    if key not in TIME_UNIT_FACTORS:
+        raise DataFormatError(f"{source}: unknown time unit {time_unit!r} (known: {', '.join(TIME_UNIT_FACTORS)})")
+    return TIME_UNIT_FACTORS[key]
 
 
 def up_axis_rotation(up_axis: str) -> np.ndarray:
@@ -132,41 +161,51 @@ def rename_columns(df: pd.DataFrame, columns: Mapping[str, str], source: str = "
     if missing:
         raise DataFormatError(
             f"{source}: --columns names column {missing[0]!r}, which the table does not have "
-            f"(columns: {', '.join(have)})"
+            f"({columns_found(have, df.attrs.get('sep'))})"
         )
     new_names = [columns.get(c, c) for c in have]
     dup = sorted({n for n in new_names if new_names.count(n) > 1})
     if dup:
         raise DataFormatError(
-            f"{source}: after --columns, column {dup[0]!r} would appear twice (columns: {', '.join(new_names)})"
+            f"{source}: after --columns, column {dup[0]!r} would appear twice (columns after renaming: "
+            f"{', '.join(new_names)}; {columns_found(have, df.attrs.get('sep'))})"
         )
     out = df.copy()
     out.columns = new_names
     return out
 
 
-def _positions(df: pd.DataFrame, source: str, first_line: int | None) -> np.ndarray:
-    """x, y, z as an (N, 3) float array; a cell that is not a number raises naming its row/line."""
-    missing = [c for c in POSITION_COLUMNS if c not in df.columns]
+def _number_column(df: pd.DataFrame, c: str, source: str, first_line: int | None) -> np.ndarray:
+    """Column ``c`` as a float array; a cell that is not a number raises naming its row/line."""
+    col = df[c]
+    if pd.api.types.is_numeric_dtype(col) and not pd.api.types.is_bool_dtype(col):
+        return col.to_numpy(dtype=float)
+    text = col.astype("string").str.strip()
+    num = pd.to_numeric(text, errors="coerce")
+    bad = (num.isna() & text.notna() & (text != "")).to_numpy()
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        where = f"line {i + first_line}" if first_line is not None else f"row {i}"
+        raise DataFormatError(f"{source}, {where}, column '{c}': {quote(text.iloc[i])} is not a number")
+    return num.to_numpy(dtype=float, na_value=np.nan)
+
+
+def _require(df: pd.DataFrame, names: tuple[str, ...], source: str) -> None:
+    """DataFormatError naming the first of ``names`` that is not a column, with the columns found."""
+    missing = [c for c in names if c not in df.columns]
     if missing:
         raise DataFormatError(
-            f"{source}: required column {missing[0]!r} missing (columns: "
-            f"{', '.join(map(str, df.columns))}); rename with --columns old=new"
+            f"{source}: required column {missing[0]!r} missing ({columns_found(df.columns, df.attrs.get('sep'))}); "
+            f"rename with --columns old=new"
         )
+
+
+def _positions(df: pd.DataFrame, source: str, first_line: int | None) -> np.ndarray:
+    """x, y, z as an (N, 3) float array; a cell that is not a number raises naming its row/line."""
+    _require(df, POSITION_COLUMNS, source)
     out = np.empty((len(df), 3))
     for j, c in enumerate(POSITION_COLUMNS):
-        col = df[c]
-        if pd.api.types.is_numeric_dtype(col) and not pd.api.types.is_bool_dtype(col):
-            out[:, j] = col.to_numpy(dtype=float)
-            continue
-        text = col.astype("string").str.strip()
-        num = pd.to_numeric(text, errors="coerce")
-        bad = (num.isna() & text.notna() & (text != "")).to_numpy()
-        if bad.any():
-            i = int(np.flatnonzero(bad)[0])
-            where = f"line {i + first_line}" if first_line is not None else f"row {i}"
-            raise DataFormatError(f"{source}, {where}, column '{c}': {quote(text.iloc[i])} is not a number")
-        out[:, j] = num.to_numpy(dtype=float, na_value=np.nan)
+        out[:, j] = _number_column(df, c, source, first_line)
     return out
 
 
@@ -211,6 +250,7 @@ def map_frame(
     contact_height: float | None = None,
     source: str = "<DataFrame>",
     first_line: int | None = None,
+    time_unit: str | None = None,
 ) -> pd.DataFrame:
     """``df`` in the book's frame: columns renamed, positions in m, ``y`` up, contact filled where absent.
 
@@ -237,6 +277,9 @@ def map_frame(
     first_line : int or None
         The file line of row 0 (e.g. 2 after a CSV header; dimensionless), so that messages name file
         lines instead of rows; None: rows.
+    time_unit : str or None
+        The unit of the table's ``t`` (text: ``"s"``, ``"ms"``, ``"us"``), divided into seconds; None:
+        already s.
 
     Returns
     -------
@@ -251,11 +294,15 @@ def map_frame(
         some trial and no ``contact_height``.
     """
     factor = unit_factor(units, source) if units is not None else None
+    t_factor = time_unit_factor(time_unit, source) if time_unit is not None else None
     try:
         rot = up_axis_rotation(up_axis) if up_axis is not None else None
     except DataFormatError as e:
         raise DataFormatError(f"{source}: {e}") from None
     out = rename_columns(df, columns, source) if columns else df.copy()
+    if t_factor is not None and t_factor != 1.0:
+        _require(out, ("t",), source)
+        out["t"] = _number_column(out, "t", source, first_line) * t_factor
     if factor is not None or rot is not None:
         pos = _positions(out, source, first_line)
         if factor is not None:

@@ -47,13 +47,14 @@ import numpy as np
 import pandas as pd
 
 from . import _checks as checks
+from . import _defects as defects
 from . import _timing as timing
 from ._checks import (
     _check_rates,
     _check_units,
 )
 from ._columns import COLUMNS, ID_COLUMNS, POSITION_COLUMNS
-from ._csv import read_plain, read_table
+from ._csv import SEPARATORS, read_plain, read_table, split_words, with_file_ids
 from ._errors import DataFormatError, quote
 from ._parquet import is_parquet, read_parquet, release_arrow_memory
 from ._runs import Runs
@@ -113,7 +114,8 @@ class Recordings:
     fs: float
     source: str
     _rows: dict = field(repr=False)
-    _resampled: dict = field(repr=False, default_factory=dict)
+    _resampled: dict = field(repr=False, default_factory=dict)  # key -> Trial: replaced (resampled, repaired)
+    _repaired: dict = field(repr=False, default_factory=dict)  # key -> bool mask of the repaired samples
     _cache: dict = field(repr=False, default_factory=dict, compare=False)
 
     def trial(self, participant: Any, trial: Any) -> Trial:
@@ -151,8 +153,31 @@ class Recordings:
         return self._cache["runs"]
 
     def is_resampled(self, participant: Any, trial: Any) -> bool:
-        """Whether the trial's samples were resampled onto the uniform grid (:meth:`trial` gives those)."""
+        """Whether :meth:`trial` gives other samples than :attr:`frame`'s: resampled onto the uniform grid
+        (``timing``) or repaired (``repairs``, :meth:`is_repaired`)."""
         return (_id(participant), _id(trial)) in self._resampled
+
+    def is_repaired(self, participant: Any, trial: Any) -> bool:
+        """Whether some of the trial's samples were repaired (``repairs`` of :attr:`trials`)."""
+        return (_id(participant), _id(trial)) in self._repaired
+
+    def repaired_mask(self, participant: Any, trial: Any) -> np.ndarray:
+        """Which samples of :meth:`trial` were replaced by interpolation (frozen, jumps, gaps).
+
+        Parameters
+        ----------
+        participant, trial : Any
+            The trial's ids (text; a number is looked up as its text).
+
+        Returns
+        -------
+        numpy.ndarray
+            Bool, aligned with ``trial(participant, trial).t`` (all False for a trial without repairs).
+        """
+        key = (_id(participant), _id(trial))
+        if key in self._repaired:
+            return self._repaired[key]
+        return np.zeros(len(self.trial(*key).t), dtype=bool)
 
     def keys(self) -> list[tuple[str, str]]:
         """(participant, trial) of every trial, in order of first appearance."""
@@ -206,19 +231,23 @@ def _where(source: str, place: str, column: str) -> str:
 
 
 def _check_columns(df: pd.DataFrame, source: str) -> pd.DataFrame:
+    sep = df.attrs.get("sep")  # a file's separator (skilllib.recordings.read_table), for the message
     df = df.rename(columns=lambda c: str(c).strip())
     missing = [c for c in COLUMNS if c not in df.columns]
     if missing:
         found = ", ".join(map(str, df.columns))
         hint = ""
-        if len(df.columns) == 1 and any(s in found for s in ";\t"):
-            hint = "; the file seems to use ';' or tabs: separate columns with commas"
+        seps = [s for s in SEPARATORS if s != sep and s in found]
+        if len(df.columns) == 1 and seps:
+            hint = f"; the file seems to be split at {SEPARATORS[seps[0]]}: give the separator with --sep"
         elif any(str(c).lower() in COLUMNS for c in df.columns):
             hint = "; column names are lower case"
         else:
             hint = "; other names can be mapped with --columns old=new,... (skilllib.recordings.map_frame)"
+        how = split_words(sep)
+        head = f"columns found ({how})" if how else "found"
         raise DataFormatError(
-            f"{source}: required column '{missing[0]}' missing (found: {quote(found)[1:-1]}; "
+            f"{source}: required column '{missing[0]}' missing ({head}: {quote(found)[1:-1]}; "
             f"expected: {', '.join(COLUMNS)}){hint}"
         )
     return df
@@ -294,6 +323,9 @@ def recordings_from_frame(
     places: np.ndarray | None = None,
     place: Callable[[int], str] | None = None,
     rate: tuple[float, float] | None = None,
+    units_known: bool = False,
+    max_gap_s: float = defects.MAX_GAP_S,
+    fill: str = "cubic",
 ) -> Recordings:
     """Validate a long table into :class:`Recordings`; see :func:`read_recordings`.
 
@@ -318,6 +350,15 @@ def recordings_from_frame(
         corpus this table is a part of (:mod:`skilllib.features`); trials are judged against them, and the
         corpus-wide errors (mixed rates, units) are left to the caller. ``(nan, nan)``: no rate is decided
         (fs NaN). None: decided from this table.
+    units_known : bool
+        Whether the positions' unit is stated (a file header's, or given with ``--units``): then the "not
+        metres" plausibility checks are skipped (:func:`skilllib.recordings.check_corpus_units`) and only a
+        span beyond :data:`skilllib.recordings.MAX_KNOWN_RANGE_M` marks a trial invalid; False: guessed.
+    max_gap_s : float
+        The longest gap of missing (or frozen, or jumping) positions filled by interpolation (s); longer
+        gaps before contact make a trial invalid, after contact cut it (:func:`repair_trial`).
+    fill : str
+        How short gaps are filled: ``"cubic"`` or ``"linear"`` (text).
 
     Returns
     -------
@@ -379,6 +420,16 @@ def recordings_from_frame(
     pos_all = _positions(*(cols[c] for c in POSITION_COLUMNS))
     t_all, c_all = cols["t"], cols["contact"]
     reasons = checks.trial_problems(t_all, pos_all, c_all, trial_of_row, rows, line, loc)
+    repairs = defects.repair_trials(  # real-data defects: stale frames, frozen, jumps, gaps (counted, said)
+        t_all, pos_all, c_all, trial_of_row, rows, ~np.array([bool(r) for r in reasons]),
+        max_gap_s=max_gap_s, fill=fill, where=loc,
+    )  # fmt: skip
+    for i, rp in repairs.items():
+        reasons[i] = rp.reason or (
+            f"too few samples after repairs ({len(rp.t)}; need at least {checks.MIN_SAMPLES})"
+            if len(rp.t) < checks.MIN_SAMPLES
+            else ""
+        )
     timings = [""] * len(keys)
     resampled: dict[tuple[str, str], Trial] = {}
     fs = np.nan
@@ -386,28 +437,50 @@ def recordings_from_frame(
     cache: dict = {"arrays": (t_all, pos_all, c_all == 1)}
     if usable.any():
         runs = Runs(np.array([r[0] for r in rows], dtype=np.int64), counts.astype(np.int64))
-        stats = checks.trial_stats(t_all, pos_all, runs, usable)
+        with np.errstate(invalid="ignore"):  # NaN positions of trials repaired below
+            stats = checks.trial_stats(t_all, pos_all, runs, usable)
+        for i, rp in repairs.items():  # the rate is the recording's; span and steps of the repaired samples
+            if usable[i]:
+                one = checks.trial_stats(rp.t, rp.pos, Runs(np.array([0]), np.array([len(rp.t)])), np.array([True]))
+                for name in ("span", "step95", "d_min", "d_max"):
+                    getattr(stats, name)[i] = getattr(one, name)[0]
         cache["stats"] = stats
     if usable.any() and (rate is None or np.isfinite(rate[1])):
         dt = _check_rates(source, stats, reasons, rate)
-        _check_units(source, stats, reasons, dt, corpus_checked=rate is not None)
+        _check_units(source, stats, reasons, dt, corpus_checked=rate is not None, units_known=units_known)
         dev = np.maximum(np.abs(stats.d_min / dt - 1), np.abs(stats.d_max / dt - 1))  # NaN: not usable
         for i in np.flatnonzero(usable & ~(dev <= timing.JITTER_TOLERANCE)):
-            if reasons[i]:
+            if reasons[i] or i in repairs:  # repaired trials: their timing below, on the repaired samples
                 continue
             r, key = rows[i], keys[i]
             irr = timing.irregularity(t_all[r], dt)
+            note = ""
             if irr.gap:
-                reasons[i] = (
-                    f"gap in the time stamps: {irr.max_interval:.4f} s before {loc(r[irr.at])}, "
-                    f"{irr.max_interval / dt:.1f} sampling intervals (the file samples every {dt:.4f} s; "
-                    f"at most {timing.MAX_GAP_INTERVALS:g} are bridged by resampling)"
+                cut = timing.gap_after_contact(t_all[r], c_all[r] == 1, dt)
+                if cut is None:
+                    reasons[i] = (
+                        f"gap in the time stamps: {irr.max_interval:.4f} s before {loc(r[irr.at])}, "
+                        f"{irr.max_interval / dt:.1f} sampling intervals (the file samples every {dt:.4f} s; "
+                        f"at most {timing.MAX_GAP_INTERVALS:g} are bridged by resampling)"
+                    )
+                    continue
+                note = (
+                    f"cut at a {t_all[r][cut] - t_all[r][cut - 1]:.4f} s gap in the time stamps after contact, "
+                    f"before {loc(r[cut])} ({len(r) - cut} samples after it not used)"
                 )
-            elif not irr.regular:
+                r = r[:cut]
+                irr = timing.irregularity(t_all[r], dt)
+            if irr.regular:
+                if note:
+                    resampled[key] = Trial(key[0], key[1], t_all[r], pos_all[r], c_all[r] == 1)
+                said = irr.describe_regular() if irr.max_jitter > timing.JITTER_TOLERANCE else ""
+                timings[i] = "; ".join(x for x in (note, said) if x)
+            else:
                 t_u, pos_u, con_u = timing.resample_uniform(t_all[r], pos_all[r], c_all[r] == 1, dt)
                 resampled[key] = Trial(key[0], key[1], t_u, pos_u, con_u)
-                timings[i] = f"resampled: {irr.describe()}"
+                timings[i] = "; ".join(x for x in (note, f"resampled: {irr.describe()}") if x)
         fs = 1.0 / dt
+    masks = _repaired_timing(repairs, keys, reasons, timings, resampled, fs, loc, rows)
     trials = pd.DataFrame(
         {
             "participant": [k[0] for k in keys],
@@ -417,6 +490,9 @@ def recordings_from_frame(
             "status": ["invalid" if r else "ok" for r in reasons],
             "reason": reasons,
             "timing": timings,
+            "repairs": [repairs[i].describe() if i in repairs else "" for i in range(len(keys))],
+            "n_repaired": [repairs[i].n_repaired if i in repairs else 0 for i in range(len(keys))],
+            "n_dropped": [repairs[i].n_dropped if i in repairs else 0 for i in range(len(keys))],
         }
     )
     return Recordings(
@@ -426,8 +502,47 @@ def recordings_from_frame(
         source=source,
         _rows=dict(zip(keys, rows)),
         _resampled=resampled,
+        _repaired=masks,
         _cache=cache,
     )
+
+
+def _repaired_timing(
+    repairs: dict[int, defects.Repair],
+    keys: list[tuple[str, str]],
+    reasons: list[str],
+    timings: list[str],
+    resampled: dict,
+    fs: float,
+    loc: Callable[[int], str],
+    rows: list[np.ndarray],
+) -> dict[tuple[str, str], np.ndarray]:
+    """The repaired trials' samples (into ``resampled``, onto the uniform grid when their time stamps are
+    irregular, as for any trial) and their repaired masks; a gap in the time stamps makes one invalid."""
+    masks = {}
+    for i, rp in repairs.items():
+        if reasons[i]:
+            continue
+        key = keys[i]
+        t, pos, con, mask = rp.t, rp.pos, rp.contact, rp.repaired
+        if np.isfinite(fs):
+            dt = 1.0 / fs
+            irr = timing.irregularity(t, dt)
+            if irr.gap:
+                reasons[i] = (
+                    f"gap in the time stamps: {irr.max_interval:.4f} s before {loc(rows[i][rp.n_first + irr.at])}, "
+                    f"{irr.max_interval / dt:.1f} sampling intervals (the file samples every {dt:.4f} s; "
+                    f"at most {timing.MAX_GAP_INTERVALS:g} are bridged by resampling)"
+                )
+                continue
+            if not irr.regular:
+                t_u, pos, con = timing.resample_uniform(t, pos, con, dt)
+                mask = np.interp(t_u, t, mask.astype(float)) > 0  # a grid sample from a repaired one
+                t = t_u
+                timings[i] = f"resampled: {irr.describe()}"
+        resampled[key] = Trial(key[0], key[1], t, pos, con)
+        masks[key] = mask
+    return masks
 
 
 def _trial_numbers(
@@ -461,12 +576,17 @@ def _positions(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
     return np.column_stack([x, y, z])
 
 
-def read_recordings(path: str | Path) -> Recordings:
+def read_recordings(
+    path: str | Path, sep: str | None = None, *, max_gap_s: float = defects.MAX_GAP_S, fill: str = "cubic"
+) -> Recordings:
     """Read and validate a recordings CSV, or a Parquet file or folder of Parquet files.
 
     Format: module docstring (compressed CSV files as pandas infers); Parquet: :mod:`skilllib.recordings`.
     A plain CSV file (one record per line, no blank line, not compressed) is read by pyarrow's CSV reader,
     any other by pandas' (same result, tested; line numbers in messages count physical lines either way).
+    The separator (comma, tab or semicolon) is ``sep`` or detected from the first lines
+    (:func:`skilllib.recordings.detect_sep`); a table with neither a ``participant`` nor a ``trial``
+    column is one recording named after the file (:func:`skilllib.recordings.file_ids`).
 
     Trial-level problems (time going backwards or repeated, a gap in the time stamps, NaN/inf positions,
     too few samples, rows not contiguous, a trial sampled at another rate) mark that trial ``invalid`` with
@@ -477,6 +597,14 @@ def read_recordings(path: str | Path) -> Recordings:
     ----------
     path : str or pathlib.Path
         The CSV file, Parquet file or folder of Parquet files (text).
+    sep : str or None
+        The CSV's separator (text: ``","``, ``"tab"`` or ``"\\t"``, ``";"``); None: detected.
+    max_gap_s : float
+        The longest gap of missing, frozen or jumping positions filled by interpolation (s; default
+        0.1); longer ones before contact make a trial invalid, after contact cut it
+        (:func:`skilllib.recordings.repair_trial`).
+    fill : str
+        How short gaps are filled: ``"cubic"`` or ``"linear"`` (text).
 
     Returns
     -------
@@ -493,18 +621,18 @@ def read_recordings(path: str | Path) -> Recordings:
     path = Path(path)
     if is_parquet(path):
         frame, where = read_parquet(path, COLUMNS, natural_key)
-        rec = recordings_from_frame(frame, str(path), place=where)
+        rec = recordings_from_frame(frame, str(path), place=where, max_gap_s=max_gap_s, fill=fill)
         del frame
         release_arrow_memory()
         return rec
-    fast = read_plain(path, ID_COLUMNS, ("t", *POSITION_COLUMNS, "contact"), NA_TEXT)
+    fast = read_plain(path, ID_COLUMNS, ("t", *POSITION_COLUMNS, "contact"), NA_TEXT, sep=sep)
     if fast is not None:  # a plain file: pyarrow's reader; record k is line k + 2
-        rec = recordings_from_frame(fast, str(path), lines=range(2, len(fast) + 2))
+        rec = recordings_from_frame(fast, str(path), lines=range(2, len(fast) + 2), max_gap_s=max_gap_s, fill=fill)
         del fast
         release_arrow_memory()
         return rec
-    df, lines = read_table(path)
-    return recordings_from_frame(df, str(path), lines=lines)
+    df, lines = read_table(path, sep)
+    return recordings_from_frame(with_file_ids(df, path), str(path), lines=lines, max_gap_s=max_gap_s, fill=fill)
 
 
 def _fmt(values: np.ndarray, decimals: int) -> list[str]:

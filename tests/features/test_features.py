@@ -196,7 +196,7 @@ def test_every_trial_is_kept_with_status_and_reason():
     df = frame_of(trials)
     df.loc[df.index[(df.participant == 1) & (df.trial == 1)][-3:], "contact"] = 1  # ints here: a DataFrame
     bad = frame_of({(2, 1): approach()})
-    bad.loc[5, "x"] = np.nan  # data-level invalid
+    bad.loc[5, "x"] = np.inf  # data-level invalid (a NaN would be a gap, filled)
     f = trial_features(recordings_from_frame(pd.concat([df, bad], ignore_index=True)))
     bad_row = len(df) + 5
     assert list(f.columns) == list(FEATURE_COLUMNS)
@@ -211,7 +211,7 @@ def test_every_trial_is_kept_with_status_and_reason():
     assert f.reason[0] == ""
     assert f.reason[1].startswith("contact speed") and "above 0.7 m/s" in f.reason[1]
     assert "below 0.3 m/s" in f.reason[2]
-    assert f.reason[3].startswith("no contact") and f.reason[4] == f"x is missing (NaN) at row {bad_row}"
+    assert f.reason[3].startswith("no contact") and f.reason[4] == f"x is infinite at row {bad_row}"
     num = ["pv", "contact_speed", "duration", "sparc", "ldlj"]
     assert f.loc[f.status != "invalid", num].notna().all().all()
     assert f.loc[f.status == "invalid", num].isna().all().all()

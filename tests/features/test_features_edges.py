@@ -294,9 +294,10 @@ def test_segment_arrays_returns_float_arrays_and_the_given_ids():
 
 @pytest.fixture(scope="module")
 def mixed_rec():
-    """Participant 1: trial 1 with a missing sample (invalid data), trial 2 good."""
+    """Participant 1: trial 1 with an infinite position (invalid data; a NaN would be a gap, filled),
+    trial 2 good."""
     df = frame_of({("1", "1"): approach(), ("1", "2"): approach(amp=0.16)})
-    df.loc[3, "y"] = np.nan
+    df.loc[3, "y"] = np.inf
     return recordings_from_frame(df)
 
 
@@ -310,7 +311,7 @@ def test_segment_looks_up_the_status_of_its_own_trial(mixed_rec):
 
 
 def test_segment_of_a_trial_with_bad_data_names_the_reason(mixed_rec):
-    with pytest.raises(ValueError, match=r"^trial '1' of participant '1' is invalid: y is missing \(NaN\) at row"):
+    with pytest.raises(ValueError, match=r"^trial '1' of participant '1' is invalid: y is infinite at row"):
         features.segment(mixed_rec, 1, 1)
 
 
@@ -341,7 +342,7 @@ def test_approaches_are_the_positions_before_contact_of_usable_trials(mixed_rec)
     touches whole, and nothing of a trial with bad data. Catches the status test inverted or misspelt
     and the cut at another contact sample."""
     df = frame_of({("1", "1"): approach(), ("1", "2"): approach(amp=0.16), ("2", "1"): approach(amp=0.10, surface=0.2)})
-    df.loc[3, "y"] = np.nan  # trial (1, 1): bad data
+    df.loc[3, "y"] = np.inf  # trial (1, 1): bad data
     out = features.approaches(recordings_from_frame(df))
     t2, pos2, c2 = approach(amp=0.16)
     _, pos3, c3 = approach(amp=0.10, surface=0.2)

@@ -47,6 +47,7 @@ def reference_features(rec, lowpass="auto", window=CONTACT_WINDOW) -> pd.DataFra
         rec.keys(), rec.trials["status"], rec.trials["reason"], rec.trials["timing"]
     ):
         row = {"participant": p, "trial": tr, "status": "invalid", "reason": reason, "resampled": bool(note)}
+        row.update(rec.trials.set_index(["participant", "trial"]).loc[(p, tr), ["repairs", "n_repaired"]].to_dict())
         if status == "ok":
             d = rec.trial(p, tr)
             seg = segment_arrays(d.t, d.pos, d.contact, rec.fs, lowpass=filt)
@@ -203,7 +204,10 @@ def test_validation_equals_the_per_trial_checks(fs):
     assert [bool(r) for r in reasons] == list(rec.trials["status"] == "invalid")
     flagged = {k: r for k, r in zip(rec.keys(), rec.trials["reason"]) if r}
     assert flagged[("zoo", "gap")].startswith("gap") and flagged[("zoo", "off-rate")].startswith("sampled at")
-    assert flagged[("zoo", "huge")].startswith("positions span") and "row" in flagged[("zoo", "nan-x")]
+    assert flagged[("zoo", "huge")].startswith("positions span") and ("zoo", "nan-x") not in flagged
+    repairs = rec.trials.set_index("trial")["repairs"]
+    row = int(np.flatnonzero(((frame["participant"] == "zoo") & (frame["trial"] == "nan-x")).to_numpy())[7])
+    assert repairs["nan-x"].startswith("1 missing sample replaced") and repairs["nan-x"].endswith(f"(row {row})")
 
 
 def test_plain_files_are_read_by_pyarrow_with_the_same_result(tmp_path):
@@ -227,15 +231,16 @@ def test_plain_files_are_read_by_pyarrow_with_the_same_result(tmp_path):
 
 def test_a_blank_line_goes_to_the_reader_that_counts_lines(tmp_path):
     """pyarrow skips blank lines, which would shift every line number after them: such a file is read
-    by pandas' reader, and a problem below the blank line is reported at its physical line."""
+    by pandas' reader, and a sample below the blank line is named by its physical line (here the repair
+    of a missing sample)."""
     frame = zoo(60.0)
     lines = frame.to_csv(index=False, lineterminator="\n").splitlines()
     bad = next(i for i, ln in enumerate(lines) if ln.startswith("zoo,nan-x,")) + 7  # row 7 of that trial
     path = tmp_path / "blank.csv"
     path.write_text("\n".join(lines[:3] + [""] + lines[3:]) + "\n")
     rec = read_recordings(path)
-    reason = rec.trials.set_index("trial").loc["nan-x", "reason"]
-    assert f"line {bad + 2}" in reason, reason  # +1 for 1-based lines, +1 for the blank line
+    repairs = rec.trials.set_index("trial").loc["nan-x", "repairs"]
+    assert f"line {bad + 2})" in repairs, repairs  # +1 for 1-based lines, +1 for the blank line
 
 
 @given(st.lists(st.lists(st.booleans(), min_size=0, max_size=6), min_size=1, max_size=8), st.randoms())

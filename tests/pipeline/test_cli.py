@@ -52,6 +52,8 @@ FIGURES = (
     "time_scales",
 )
 TRIAL_KEYS = {
+    "repairs",
+    "n_repaired",
     "participant",
     "trial",
     "status",
@@ -172,7 +174,8 @@ def test_every_trial_invalid_still_writes_results(tmp_path, capsys, small_frame)
     assert code == 3, err
     res = _results(tmp_path / "o")
     assert res["dataset"]["fs"] is None and len(res["trials"]) == 48
-    assert {t["status"] for t in res["trials"]} == {"invalid"} and res["figures"] == []
+    assert {t["status"] for t in res["trials"]} == {"invalid"}  # no data figure, the segmentation pages only
+    assert res["figures"] == ["segmentation-01.png", "segmentation-02.png"]  # 48 trials, 24 a page
     assert "48 x too few samples" in out
 
 
@@ -289,10 +292,12 @@ def test_participants_at_different_rates_stop_the_run(tmp_path, capsys, small_fr
 
 
 def test_semicolon_separated_file_gets_a_hint(tmp_path, capsys, small_frame):
+    """A semicolon file is read (the separator detected); forced to commas with --sep, one line says how
+    the line was split and which separator the file seems to use."""
     small_frame.to_csv(tmp_path / "semi.csv", sep=";", index=False)
-    code, _, err = _run(capsys, "--data", str(tmp_path / "semi.csv"), "--out", str(tmp_path / "o"))
+    code, _, err = _run(capsys, "--data", str(tmp_path / "semi.csv"), "--out", str(tmp_path / "o"), "--sep", ",")
     assert code == 2
-    _one_line_error(err, "semi.csv", "participant", "commas")
+    _one_line_error(err, "semi.csv", "participant", "split at commas", "--sep")
 
 
 def test_bad_options_are_one_line(tmp_path, capsys, small_frame):
@@ -445,7 +450,7 @@ def test_broken_trials_are_marked_and_the_rest_goes_on(tmp_path, capsys, small_f
     (p_back, t_back), (p_nan, t_nan), (p_noc, t_noc), (p_few, t_few), (p_rep, t_rep) = keys[:5]
     i = _rows(df, p_back, t_back)
     df.loc[i[20], "t"] = df.loc[i[18], "t"]  # time goes backwards
-    df.loc[_rows(df, p_nan, t_nan)[30], "x"] = np.nan  # NaN position (empty cell)
+    df.loc[_rows(df, p_nan, t_nan)[30:60], "x"] = np.nan  # NaN positions (empty cells): 0.3 s, too long to fill
     df.loc[_rows(df, p_noc, t_noc), "contact"] = 0  # never touches the box
     few = _rows(df, p_few, t_few)
     df = df.drop(few[3:])  # only 3 samples left
@@ -519,6 +524,8 @@ def test_default_run_writes_results_and_figures(tmp_path):
         "n_participants": 10,
         "fs": 60.0,
         "n_resampled": 0,
+        "n_repaired": 0,
+        "n_repaired_samples": 0,
     }
     svgs = [(out / f).read_text() for f in res["figures"] if f.endswith(".svg")]
     assert all("Synthetic data: the book" in svg for svg in svgs), "every figure of the cohort says it is synthetic"
@@ -546,7 +553,8 @@ def test_default_run_writes_results_and_figures(tmp_path):
     # the schema table of docs/results.md (sensitivity: an option; trials_file and trial_counts: above 10,000 trials)
     assert set(res) == SCHEMA_KEYS - {"sparc_sensitivity", "trials_file", "trial_counts"}
     assert not any("shrunk" in m or "needs more" in m for m in res["messages"])  # the cohort allows k = 6
-    assert set(res["figures"]) == {f"{n}.{ext}" for n in FIGURES for ext in ("png", "svg")}
+    pages = {f"segmentation-{i:02d}.png" for i in range(1, 4)}  # 72 of the 1,500 trials, PNG only
+    assert set(res["figures"]) == {f"{n}.{ext}" for n in FIGURES for ext in ("png", "svg")} | pages
     for name in res["figures"]:
         assert (out / name).stat().st_size > 0
 

@@ -38,6 +38,7 @@ FS = 60.0
 AMP_TH = 0.1  #: not the default 0.05: the figures must show the run's own threshold
 CUTOFF_HZ = 8.0
 DATA_FIGURES = ["features", "trials_by_participant", "participant_features", "sparc_vs_length"]
+SEGMENTATION_PAGES = ["segmentation-01"]  #: 24 trials: one page (PNG only, skilllib.figures.save_page)
 CLUSTER_FIGURES = [
     "silhouette_sweep",
     "silhouettes_k",
@@ -78,6 +79,10 @@ def _draw(run_: pipeline.PipelineRun, mp: pytest.MonkeyPatch, synthetic: bool) -
         saved.append((fig, name))
         return [Path(out_dir) / f"{name}.png", Path(out_dir) / f"{name}.svg"]
 
+    def record_page(fig, out_dir, name, dpi=110):
+        saved.append((fig, name))
+        return [Path(out_dir) / f"{name}.png"]
+
     def stub(fname):
         def draw(*args):
             calls.append((fname, args))
@@ -90,6 +95,7 @@ def _draw(run_: pipeline.PipelineRun, mp: pytest.MonkeyPatch, synthetic: bool) -
         return [(plt.figure(), n) for n in STUB_DYNAMICS]  # all drawn before the first is saved
 
     mp.setattr(fg, "save", record)
+    mp.setattr(fg, "save_page", record_page)
     for fname in STUBBED:
         mp.setattr(fg, fname, stub(fname))
     mp.setattr(fg, "dynamics_figures", dynamics)
@@ -125,9 +131,11 @@ def test_every_figure_is_written_under_its_name_png_and_svg(drawn):
     wrong (or no) name."""
     d = drawn["synthetic"]
     names = _names(d["saved"])
-    assert names == [*DATA_FIGURES, *CLUSTER_FIGURES, *STUB_DYNAMICS, "sparc_sensitivity"]
-    assert d["written"] == [f"{n}.{ext}" for n in names for ext in ("png", "svg")]
-    assert _names(drawn["plain"]["saved"]) == DATA_FIGURES  # without clustering, only the data figures
+    assert names == [*DATA_FIGURES, *SEGMENTATION_PAGES, *CLUSTER_FIGURES, *STUB_DYNAMICS, "sparc_sensitivity"]
+    exts = {n: ("png",) if n in SEGMENTATION_PAGES else ("png", "svg") for n in names}
+    assert d["written"] == [f"{n}.{ext}" for n in names for ext in exts[n]]
+    # without clustering, only the data figures and the segmentation pages
+    assert _names(drawn["plain"]["saved"]) == [*DATA_FIGURES, *SEGMENTATION_PAGES]
 
 
 def test_figures_are_drawn_from_the_runs_own_objects(drawn, small_run):
@@ -199,11 +207,13 @@ def test_synthetic_note_is_small_grey_and_in_the_bottom_right_corner(drawn):
 
 
 def test_without_valid_trials_no_data_figure_is_drawn(small_run):
-    """Only invalid trials (and no clustering): no figure at all."""
+    """Only invalid trials (and no clustering): no data figure, only the segmentation pages (why each
+    trial is invalid)."""
     bare = dataclasses.replace(_data_only(small_run), features=small_run.features.assign(status="invalid"))
     with pytest.MonkeyPatch.context() as mp:
         d = _draw(bare, mp, True)
-    assert d["written"] == [] and d["saved"] == [] and d["calls"] == []
+    assert d["written"] == [f"{n}.png" for n in SEGMENTATION_PAGES] and d["calls"] == []
+    assert _names(d["saved"]) == SEGMENTATION_PAGES
 
 
 # --- filter_message ------------------------------------------------------------------------------------

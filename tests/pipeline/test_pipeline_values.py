@@ -42,7 +42,17 @@ from skilllib.smoothness import DEFAULT_AMP_TH, DEFAULT_FC, DEFAULT_PADLEVEL, SP
 
 REL = 1e-12  # floats that pass through JSON (repr round-trips exactly; this only allows for rounding)
 FEATURES = ("pv", "contact_speed", "duration", "sparc", "sparc_band_end_hz", "ldlj")
-TRIAL_KEYS = {"participant", "trial", "status", "reason", *FEATURES, "sparc_capped", "resampled"}
+TRIAL_KEYS = {
+    "participant",
+    "trial",
+    "status",
+    "reason",
+    *FEATURES,
+    "sparc_capped",
+    "resampled",
+    "repairs",
+    "n_repaired",
+}
 FIGURES = (
     "features",
     "trials_by_participant",
@@ -193,6 +203,7 @@ def check_trials(res: dict, d: Direct) -> None:
         assert entry["participant"] == row["participant"] and type(entry["participant"]) is str, what
         assert entry["trial"] == row["trial"] and type(entry["trial"]) is str, what
         assert entry["resampled"] is bool(row["resampled"]), what
+        assert entry["repairs"] == row["repairs"] and entry["n_repaired"] == row["n_repaired"], what
         assert entry["status"] == row["status"], what
         if row["status"] == "selected":
             assert entry["reason"] is None, f"{what}: a selected trial's reason must be null"
@@ -363,13 +374,19 @@ def cohort_features(cohort_frame) -> pd.DataFrame:
 
 @pytest.fixture(scope="module")
 def base_file(tmp_path_factory, cohort_frame, cohort_features) -> Path:
-    """The base cohort with three of its excluded trials made invalid: a NaN position (found by the reader),
-    a recording that starts in motion and one that never touches (found by the segmentation)."""
+    """The base cohort with three of its excluded trials made invalid: a gap of NaN positions during the
+    approach too long to fill (found by the reader), a recording that starts in motion and one that never
+    touches (found by the segmentation)."""
     df = cohort_frame.copy()
     f = cohort_features
     (p1, t1), (p2, t2), (p3, t3) = _keys(f, "excluded")[:3]
     rows = df.index[(df["participant"] == p1) & (df["trial"] == t1)]
-    df.loc[rows[10], "x"] = np.nan
+    onset = int(
+        np.searchsorted(
+            df.loc[rows, "t"].to_numpy(), float(f.loc[(f["participant"] == p1) & (f["trial"] == t1), "t_onset"].iloc[0])
+        )
+    )
+    df.loc[rows[onset + 1 : onset + 12], "x"] = np.nan  # 11 samples (0.18 s) in the movement: not filled
     df.loc[(df["participant"] == p3) & (df["trial"] == t3), "contact"] = 0
     t_onset = float(f.loc[(f["participant"] == p2) & (f["trial"] == t2), "t_onset"].iloc[0])
     df = _start_in_motion(df, (p2, t2), t_onset)
@@ -758,7 +775,7 @@ def test_figures_are_written_only_when_asked_and_change_nothing_else(tmp_path, r
     res = _load(out)
     plain_res, plain, out_plain = runs(data, k=k)
     assert _without(res, "figures") == plain_res
-    want = {f"{n}.{ext}" for n in FIGURES for ext in ("png", "svg")}
+    want = {f"{n}.{ext}" for n in FIGURES for ext in ("png", "svg")} | {"segmentation-01.png"}  # 10 trials: a page
     assert len(res["figures"]) == len(want) and set(res["figures"]) == want
     assert {p.name for p in out.iterdir()} == want | {"results.json", MANIFEST}
     assert res["dataset"]["synthetic"] is False  # a user's file: no "synthetic data" footer on its figures
@@ -779,6 +796,8 @@ NO_READ_OPTIONS = {
     "contact_threshold": None,
     "contact_height": None,
     "name_pattern": None,
+    "sep": None,
+    "time_unit": None,
 }
 CLI_DEFAULTS = {
     "data": None,
@@ -829,6 +848,10 @@ CLI_CASES = [
     (
         ["--units", "mm", "--up-axis=-z", "--columns", "time=t,px=x"],
         {"read_options": {**NO_READ_OPTIONS, "units": "mm", "up_axis": "-z", "columns": {"time": "t", "px": "x"}}},
+    ),
+    (
+        ["--sep", "tab", "--time-unit", "ms"],
+        {"read_options": {**NO_READ_OPTIONS, "sep": "tab", "time_unit": "ms"}},
     ),
     (
         [

@@ -20,6 +20,10 @@ def schema_2(results: dict) -> dict:
     out = {"schema_version": 2, **results}
     # the chapters were renumbered (the sensitivity analysis of chapter 3 is now in chapter 6)
     out["messages"] = [m.replace("--sensitivity, chapter 3)", "--sensitivity, chapter 6)") for m in out["messages"]]
+    # real-data defects (stale frames, frozen positions, jumps, gaps) are repaired and reported: keys added,
+    # and none fires on the cohort (every count 0, every repairs text empty)
+    out["dataset"] = {**out["dataset"], "n_repaired": 0, "n_repaired_samples": 0}
+    out["trials"] = [{**t, "repairs": "", "n_repaired": 0} for t in out["trials"]]
     for p in out["transfer"]["prototypes"]:
         p["feasible_velocity"] = p.pop("feasible")
         del p["time_scale"]

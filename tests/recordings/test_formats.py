@@ -1,6 +1,7 @@
 """Tests of skilllib.recordings: C3D, TRC, CSV mapping (columns, units, up axis, contact height), folders.
 
-Every file is written by the test: C3D files with the c3d library (the reader's own), TRC files as text.
+Every file is written by the test: C3D files with test_c3d.write_c3d (the C3D tests are in test_c3d.py), TRC
+files as text.
 Values are checked against the written ones (positions after unit conversion, time stamps, the contact
 sample), and every error message against the names it must list.
 """
@@ -8,16 +9,14 @@ sample), and every error message against the names it must list.
 from __future__ import annotations
 
 import gzip
-import random
-import warnings
 from pathlib import Path
 
-import c3d
 import numpy as np
 import pandas as pd
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from test_c3d import write_c3d  # the C3D tests and their writer live in test_c3d.py
 
 from skilllib.features import trial_features
 from skilllib.recordings import (
@@ -29,10 +28,8 @@ from skilllib.recordings import (
     map_frame,
     parse_columns,
     read_any,
-    read_c3d,
     read_csv_table,
     read_folder,
-    read_trc,
     recordings_from_frame,
     up_axis_rotation,
 )
@@ -47,63 +44,6 @@ def approach(n: int = 80, fs: float = FS, drop: float = 0.12) -> np.ndarray:
     tau = np.clip((t - 0.2) / 0.6, 0, 0.8)
     s = tau**3 * (10 - 15 * tau + 6 * tau**2)
     return np.column_stack([0.02 + 0.01 * s, 0.30 - drop * s, -0.05 + 0.03 * s])
-
-
-def _pack(labels: list[str]) -> tuple[str, int]:
-    width = max(len(s) for s in labels)
-    return "".join(s.ljust(width) for s in labels), width
-
-
-def write_c3d(
-    path: Path,
-    markers: dict[str, np.ndarray],
-    *,
-    rate: float = FS,
-    units: str = "mm",
-    first_frame: int = 1,
-    analogs: dict[str, np.ndarray] | None = None,
-    events: list[tuple[str, float]] = (),
-    missing: dict[str, list[int]] | None = None,
-    angles: list[str] = (),
-) -> Path:
-    """A C3D file written with the reader's library: ``markers`` name -> (n, 3) positions in the file's
-    ``units`` (``""``: blank POINT:UNITS); ``missing`` frames get a negative residual (the C3D 'not seen');
-    ``angles`` are extra points listed as POINT:ANGLES; ``analogs`` name -> (n * m,) samples, m per frame;
-    ``events`` (label, time in s) in EVENT:LABELS / EVENT:TIMES; ``first_frame`` counted from 1."""
-    names = list(markers) + list(angles)
-    n = len(next(iter(markers.values())))
-    m = len(next(iter(analogs.values()))) // n if analogs else 0
-    w = c3d.Writer(point_rate=rate, analog_rate=rate * m, point_units=units.ljust(4))
-    w.set_point_labels(names)
-    if analogs:
-        w.set_analog_labels(list(analogs))
-    if angles:
-        w.point_group.add_str("ANGLES", "model outputs", *_pack(list(angles)), len(angles))
-    frames = np.empty((n, 2), dtype=object)  # c3d 0.6.0: a prebuilt object array (see skilllib.recordings)
-    ana = np.stack([np.asarray(a, dtype=float).reshape(n, m) for a in analogs.values()], axis=1) if analogs else None
-    for i in range(n):
-        pts = np.zeros((len(names), 5))
-        for j, name in enumerate(markers):
-            pts[j, :3] = markers[name][i]
-            if i in (missing or {}).get(name, ()):
-                pts[j, 3] = -1
-        pts[len(markers) :, :3] = 7.0
-        frames[i, 0] = pts
-        frames[i, 1] = ana[i] if analogs else np.zeros((0, 0))
-    w.add_frames(frames)
-    w.set_start_frame(first_frame)
-    if events:
-        g = w.add_group(50, "EVENT", "events")
-        g.add_str("LABELS", "event labels", *_pack([lab for lab, _ in events]), len(events))
-        times = np.array([[0.0, tm] for _, tm in events], dtype=np.float32)  # C3D dims [2, n]: minutes, seconds
-        g.add_param(
-            "TIMES", desc="event times", bytes_per_element=4, bytes=times.tobytes(), dimensions=[2, len(events)]
-        )
-        g.add("USED", "number of events", 2, "<H", len(events))
-    with open(path, "wb") as handle, warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # c3d warns "No analog data found in file." for a file without analogs
-        w.write(handle)
-    return path
 
 
 def write_trc(
@@ -137,202 +77,10 @@ def write_trc(
     return path
 
 
-# --- C3D -----------------------------------------------------------------------------------------
-
-
-@pytest.mark.parametrize("units", ["mm", "cm", "m"])
-def test_c3d_positions_in_metres_from_the_header_unit_and_time_from_the_rate(tmp_path, units):
-    pos = approach()
-    path = write_c3d(tmp_path / "a.c3d", {"tip": pos / UNIT_FACTORS[units]}, units=units, rate=FS)
-    df = read_c3d(path)
-    np.testing.assert_allclose(df[["x", "y", "z"]].to_numpy(), pos, rtol=1e-6, atol=1e-8)  # float32 in the file
-    np.testing.assert_allclose(df["t"].to_numpy(), np.arange(len(pos)) / FS, rtol=0, atol=1e-12)
-    assert df["contact"].isna().all()  # no channel, no event: left for the height rule
-    frame, problems = read_any(path, contact_height=0.2)  # a stem without '_': participant and trial both
-    assert frame[["participant", "trial"]].iloc[0].tolist() == ["a", "a"] and problems == []
-    assert np.flatnonzero(frame["contact"].to_numpy())[0] == np.flatnonzero(pos[:, 1] <= 0.2)[0]
-
-
-def test_c3d_time_keeps_the_capture_clock_of_a_cropped_trial(tmp_path):
-    path = write_c3d(tmp_path / "a.c3d", {"tip": approach(20) * 1000}, rate=250.0, first_frame=51)
-    t = read_c3d(path)["t"].to_numpy()
-    assert t[0] == pytest.approx(50 / 250.0) and np.allclose(np.diff(t), 1 / 250.0)
-
-
-def test_c3d_units_override_and_missing_units(tmp_path):
-    pos = approach(20)
-    path = write_c3d(tmp_path / "a.c3d", {"tip": pos * 100}, units="")
-    with pytest.raises(DataFormatError, match=r"a\.c3d: no POINT:UNITS.*--units"):
-        read_c3d(path)
-    np.testing.assert_allclose(read_c3d(path, units="cm")[["x", "y", "z"]].to_numpy(), pos, rtol=1e-6)
-    bad = write_c3d(tmp_path / "b.c3d", {"tip": pos}, units="in")
-    with pytest.raises(DataFormatError, match=r"b\.c3d: POINT:UNITS: unknown length unit 'in' \(known: m, cm, mm\)"):
-        read_c3d(bad)
-
-
-def test_c3d_marker_by_name_and_vicon_subject_prefix(tmp_path):
-    a, b = approach(20), approach(20) + 0.5
-    path = write_c3d(tmp_path / "a.c3d", {"Sub1:tip": a * 1000, "Sub1:wrist": b * 1000})
-    np.testing.assert_allclose(read_c3d(path, marker="Sub1:wrist")["y"], b[:, 1], rtol=1e-6)
-    np.testing.assert_allclose(read_c3d(path, marker="tip")["y"], a[:, 1], rtol=1e-6)
-
-
-def test_c3d_several_markers_without_a_name_or_an_unknown_name_list_the_markers(tmp_path):
-    path = write_c3d(tmp_path / "a.c3d", {"tip": approach(20), "wrist": approach(20)})
-    with pytest.raises(DataFormatError, match=r"a\.c3d: 2 markers \(tip, wrist\): choose one with --marker NAME"):
-        read_c3d(path)
-    with pytest.raises(DataFormatError, match=r"a\.c3d: no marker 'elbow' \(markers: tip, wrist\)"):
-        read_c3d(path, marker="elbow")
-
-
-def test_c3d_model_outputs_are_not_markers(tmp_path):
-    pos = approach(20)
-    path = write_c3d(tmp_path / "a.c3d", {"tip": pos * 1000}, angles=["LElbowAngles"])
-    np.testing.assert_allclose(read_c3d(path)["x"], pos[:, 0], rtol=1e-6)
-
-
-def test_c3d_gaps_are_nan_and_the_trial_is_invalid_with_the_sample(tmp_path):
-    pos = approach(30) * 1000
-    pos[12] = 0.0  # the all-zero convention
-    path = write_c3d(tmp_path / "P1_1.c3d", {"tip": pos}, missing={"tip": [5]}, events=[("contact", 0.25)])
-    df = read_c3d(path)
-    nan_rows = np.flatnonzero(df[["x", "y", "z"]].isna().any(axis=1).to_numpy())
-    assert nan_rows.tolist() == [5, 12] and df[["x", "y", "z"]].iloc[[5, 12]].isna().all().all()
-    frame, _ = read_any(path)
-    rec = recordings_from_frame(frame)
-    assert rec.trials.status.tolist() == ["invalid"] and "missing (NaN) at row 5" in rec.trials.reason[0]
-
-
-def test_c3d_contact_from_an_analog_channel_at_the_right_point_frame(tmp_path):
-    n, m = 40, 10  # analog at 10 x the point rate
-    volts = np.full(n * m, 0.2)
-    volts[178:] = 4.8  # first high analog sample in point frame 17 (samples 170..179): "any", not "mean"
-    path = write_c3d(
-        tmp_path / "a.c3d", {"tip": approach(n) * 1000}, analogs={"force": np.zeros(n * m), "Contact": volts}
-    )
-    c = read_c3d(path)["contact"].to_numpy()
-    assert c.tolist() == [0.0] * 17 + [1.0] * (n - 17)
-    # an explicit threshold (the channel's units) above the high level: never in contact
-    assert read_c3d(path, contact_threshold=5.0)["contact"].sum() == 0
-    # a named channel; a constant channel is never in contact
-    assert read_c3d(path, contact_channel="force")["contact"].tolist() == [0.0] * n
-
-
-def test_c3d_contact_from_an_event_from_the_first_frame_at_or_after_it(tmp_path):
-    n = 40
-    path = write_c3d(
-        tmp_path / "a.c3d",
-        {"tip": approach(n) * 1000},
-        first_frame=51,
-        events=[("Other", 0.51), ("touch", 0.5 + 0.123), ("touch", 0.5 + 0.3)],
-    )
-    c = read_c3d(path, contact_channel="touch")["contact"].to_numpy()
-    assert np.flatnonzero(c)[0] == 13 and c[13:].all()  # t = 0.63 s, the first frame after 0.623 s
-    exact = write_c3d(tmp_path / "b.c3d", {"tip": approach(n) * 1000}, events=[("contact", 0.07)])
-    c = read_c3d(exact)["contact"].to_numpy()  # 0.07 s is not exact in float32: still frame 7
-    assert np.flatnonzero(c)[0] == 7
-
-
-def test_c3d_named_contact_channel_missing_lists_channels_and_events(tmp_path):
-    path = write_c3d(
-        tmp_path / "a.c3d", {"tip": approach(20)}, analogs={"Fz": np.zeros(40)}, events=[("Foot Strike", 0.1)]
-    )
-    with pytest.raises(
-        DataFormatError,
-        match=r"a\.c3d: no analog channel or event 'touch' "
-        r"\(analog channels: Fz; events: Foot Strike\)",
-    ):
-        read_c3d(path, contact_channel="touch")
-
-
-def test_c3d_not_a_c3d_file(tmp_path):
-    bad = tmp_path / "x.c3d"
-    bad.write_bytes(b"not a c3d file at all" * 40)
-    with pytest.raises(DataFormatError, match=r"x\.c3d: not a readable C3D file"):
-        read_c3d(bad)
-    with pytest.raises(DataFormatError, match=r"y\.c3d: file not found"):
-        read_c3d(tmp_path / "y.c3d")
-
-
-def test_c3d_cut_short_or_damaged_raises_a_one_line_error_never_another_exception(tmp_path):
-    pos = approach(30) * 1000
-    good = write_c3d(
-        tmp_path / "good.c3d",
-        {"tip": pos},
-        analogs={"contact": np.r_[np.zeros(30), np.ones(30)]},
-        events=[("Foot Strike", 0.1)],
-    )
-    raw = good.read_bytes()
-    want = read_c3d(good)
-    cut = tmp_path / "cut.c3d"
-    outcomes = set()
-    for n in range(0, len(raw), 32):
-        cut.write_bytes(raw[:n])
-        try:
-            got = read_c3d(cut)
-        except DataFormatError as e:
-            assert "\n" not in str(e) and str(e).startswith(str(cut))
-            outcomes.add(str(e).split(" (")[0].split(":")[1].strip())
-        else:  # cut in the padding after the last frame: the data are complete
-            pd.testing.assert_frame_equal(got, want)
-            outcomes.add("read")
-    assert {"not a readable C3D file", "file cut short", "read"} <= outcomes
-    rng = random.Random(1)
-    bad = tmp_path / "bad.c3d"
-    for _ in range(40):  # 3 random bytes changed in the header and parameter section
-        b = bytearray(raw)
-        for _ in range(3):
-            b[rng.randrange(0, 1536)] = rng.randrange(256)
-        bad.write_bytes(bytes(b))
-        try:
-            read_c3d(bad)
-        except DataFormatError:
-            pass
-
-
 # --- TRC -----------------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("units,blank", [("mm", True), ("m", False)])
-def test_trc_positions_in_metres_time_from_the_file_and_marker_choice(tmp_path, units, blank):
-    a, b = approach(30), approach(30) + 0.25
-    path = write_trc(
-        tmp_path / "a.trc",
-        {"tip": a / UNIT_FACTORS[units], "wrist": b / UNIT_FACTORS[units]},
-        units=units,
-        t0=1.5,
-        blank_line=blank,
-    )
-    df = read_trc(path, marker="wrist")
-    np.testing.assert_allclose(df[["x", "y", "z"]].to_numpy(), b, atol=1e-6 * UNIT_FACTORS[units])
-    np.testing.assert_allclose(df["t"], 1.5 + np.arange(30) / FS, atol=1e-6)
-    assert df["contact"].isna().all()
-    with pytest.raises(DataFormatError, match=r"a\.trc: 2 markers \(tip, wrist\): choose one with --marker"):
-        read_trc(path)
-    with pytest.raises(DataFormatError, match=r"no marker 'elbow' \(markers: tip, wrist\)"):
-        read_trc(path, marker="elbow")
-
-
-def test_trc_empty_cell_is_a_gap_and_text_is_an_error_naming_the_line(tmp_path):
-    pos = approach(10) * 1000
-    path = write_trc(tmp_path / "a.trc", {"tip": pos}, cells={(3, 3): ""})
-    df = read_trc(path)
-    assert df["y"].isna().tolist() == [False] * 3 + [True] + [False] * 6
-    bad = write_trc(tmp_path / "b.trc", {"tip": pos}, cells={(4, 2): "1,5"})  # header 5 lines + blank: row 4 is line 11
-    with pytest.raises(DataFormatError, match=r"b\.trc, line 11, column 3 \(x\): '1,5' is not a number"):
-        read_trc(bad)
-
-
-def test_trc_header_checks(tmp_path):
-    path = write_trc(tmp_path / "a.trc", {"tip": approach(5)})
-    text = path.read_text().splitlines()
-    (tmp_path / "b.trc").write_text("\n".join(["Frame#\tTime"] + text[1:]))
-    with pytest.raises(DataFormatError, match=r"b\.trc, line 1: not a TRC file"):
-        read_trc(tmp_path / "b.trc")
-    text[2] = text[2].replace("\t1\tmm", "\t2\tmm", 1)
-    (tmp_path / "c.trc").write_text("\n".join(text))
-    with pytest.raises(DataFormatError, match=r"c\.trc, line 4: 1 marker names \(tip\) but NumMarkers is 2"):
-        read_trc(tmp_path / "c.trc")
+# The TRC tests are in tests/recordings/test_trc.py.
 
 
 # --- mapping -------------------------------------------------------------------------------------
@@ -602,18 +350,3 @@ def test_a_z_up_c3d_in_mm_with_a_contact_event_runs_through_validation_and_featu
     feats = trial_features(rec)
     assert feats.status[0] in ("selected", "excluded")
     assert feats.t_contact[0] == pytest.approx(first_low / FS)
-
-
-@pytest.mark.parametrize("units", ["mm", "cm", "m"])
-def test_the_library_trc_writer_round_trips_through_the_reader(tmp_path, units):
-    from skilllib.recordings import write_trc as library_write_trc
-
-    pos = approach(40)
-    pos[7, 1] = np.nan  # a gap: an empty cell
-    t = 0.25 + np.arange(len(pos)) / FS
-    path = library_write_trc(tmp_path / "P1_3.trc", {"tip": pos}, t, units=units)
-    df = read_trc(path)
-    assert np.isnan(df["y"].iloc[7]) and np.isnan(df["y"].to_numpy()).sum() == 1
-    ok = ~np.isnan(pos).any(axis=1)
-    np.testing.assert_allclose(df[["x", "y", "z"]].to_numpy()[ok], pos[ok], atol=0.0005 * UNIT_FACTORS[units])
-    np.testing.assert_allclose(df["t"].to_numpy(), t, atol=1e-6)

@@ -44,7 +44,7 @@ def test_parquet_integer_ids_are_text_and_problems_name_the_file_and_row(tmp_pat
     f.to_parquet(tmp_path / "one.parquet", index=False)
     rec = read_recordings(tmp_path / "one.parquet")
     assert set(rec.trials["participant"]) == {"1", "2", "3"}
-    assert "one.parquet, row 6" in rec.trials["reason"].iloc[0]
+    assert rec.trials["repairs"].iloc[0].endswith("one.parquet, row 6)")  # the one-sample gap, filled
     f.drop(columns="contact").to_parquet(tmp_path / "nocontact.parquet", index=False)
     with pytest.raises(DataFormatError, match=r"nocontact.parquet: required column 'contact' missing"):
         read_recordings(tmp_path / "nocontact.parquet")

@@ -217,7 +217,18 @@ def test_the_trial_table_states_every_trial_as_the_file_has_it(tmp_path):
     and resampled."""
     rec = read_recordings(mixed_file(tmp_path))
     tr = rec.trials
-    assert tr.columns.tolist() == ["participant", "trial", "n_samples", "first_line", "status", "reason", "timing"]
+    assert tr.columns.tolist() == [
+        "participant",
+        "trial",
+        "n_samples",
+        "first_line",
+        "status",
+        "reason",
+        "timing",
+        "repairs",
+        "n_repaired",
+        "n_dropped",
+    ]
     assert list(zip(tr.participant, tr.trial)) == [("A", "1"), ("A", "2"), ("A", "3"), ("B", "1"), ("B", "2")]
     assert tr.n_samples.tolist() == [N, N, N, 3, N]
     assert tr.first_line.tolist() == [2, 2 + N, 2 + 2 * N, 2 + 3 * N, 2 + 3 * N + 3]
@@ -327,7 +338,11 @@ def test_places_name_where_each_row_came_from():
     df.loc[N + 3, "y"] = np.nan
     places = np.array([f"{'ab'[i // N]}.c3d, frame {i % N}" for i in range(len(df))])
     rec = recordings_from_frame(df, "folder", places=places)
-    assert status(rec, 1, 2) == ("invalid", "y is missing (NaN) at b.c3d, frame 3")
+    assert status(rec, 1, 2) == ("ok", "") and rec.trials.repairs.iloc[1].endswith("(b.c3d, frame 3)")
+    rec = recordings_from_frame(df, "folder", places=places, max_gap_s=0.0)  # not filled: at rest, cut before
+    assert (
+        status(rec, 1, 2) == ("ok", "") and rec.trials.repairs.iloc[1] == "4 samples before a long gap at rest dropped"
+    )
     df.loc[N + 5, "x"] = "?"
     with pytest.raises(DataFormatError, match=r"^folder, b\.c3d, frame 5, column 'x': '\?' is not a number$"):
         recordings_from_frame(df, "folder", places=places)

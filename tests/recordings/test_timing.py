@@ -12,6 +12,7 @@ DT = 1/64 s (exact in binary), so grid times can coincide exactly with time stam
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
@@ -21,10 +22,13 @@ from skilllib.recordings import (
     MIN_RATE_HZ,
     TRIM,
     Irregularity,
+    gap_after_contact,
+    grid_jitter,
     irregularity,
     quote,
     regular_mean_interval,
     resample_uniform,
+    time_quantum,
     time_unit_advice,
 )
 
@@ -206,11 +210,36 @@ def test_contact_starts_at_the_grid_time_of_the_first_contact_sample():
     np.testing.assert_array_equal(con, np.arange(len(grid)) >= 20)
 
 
-def test_contact_from_the_first_grid_time_after_an_off_grid_contact_sample():
-    """The first contact sample jittered to T0 + 20.3 DT: contact from grid point 21."""
+def test_contact_from_the_first_grid_time_after_the_midpoint_before_the_first_contact_sample():
+    """The first contact sample jittered to T0 + 20.3 DT, the last approach sample at T0 + 19 DT: contact
+    began at about T0 + 19.65 DT, so from grid point 20 (catches carrying the approach on to the first
+    contact sample), and grid point 20 lies on the straight line between samples 19 and 20
+    (interpolated, never extrapolated from the approach spline)."""
     t, pos, contact = trial(jitter={20: 0.3})
-    grid, _, con = resample_uniform(t, pos, contact, DT)
-    np.testing.assert_array_equal(con, np.arange(len(grid)) >= 21)
+    grid, out, con = resample_uniform(t, pos, contact, DT)
+    np.testing.assert_array_equal(con, np.arange(len(grid)) >= 20)
+    c = int(np.flatnonzero(contact)[0])  # frame 20 (frame 7 is dropped)
+    w = (grid[20] - t[c - 1]) / (t[c] - t[c - 1])
+    assert 0 < w < 1
+    np.testing.assert_allclose(out[20], (1 - w) * pos[c - 1] + w * pos[c], rtol=0, atol=1e-12)
+
+
+def test_no_grid_sample_is_extrapolated_from_the_approach():
+    """Whatever the jitter, every grid sample between the last approach and the first contact sample lies
+    between their positions (an extrapolated spline overshoots past them: the issue's 2.6-4.1 mm), and
+    contact begins at the midpoint between the two samples."""
+    rng = np.random.default_rng(3)
+    for _ in range(50):
+        n = 40
+        t = T0 + (np.arange(n) + rng.uniform(-0.3, 0.3, n)) * DT
+        y = 0.2 * np.sin(np.minimum(t - T0, 22 * DT) * 9.0)  # decelerating, then still in contact
+        pos = np.column_stack([np.zeros(n), y, np.zeros(n)])
+        contact = np.arange(n) >= 22
+        grid, out, con = resample_uniform(t, pos, contact, DT)
+        np.testing.assert_array_equal(con, grid >= 0.5 * (t[21] + t[22]))
+        mid = (grid > t[21]) & (grid < t[22])
+        lo, hi = sorted((pos[21, 1], pos[22, 1]))
+        assert np.all((out[mid, 1] >= lo - 1e-15) & (out[mid, 1] <= hi + 1e-15))
 
 
 def test_a_trial_without_contact_is_one_spline_with_no_contact():
@@ -246,17 +275,19 @@ def test_a_part_of_four_samples_is_a_cubic_spline(n_contact):
 
 @pytest.mark.parametrize("n_contact", [2, 3])
 def test_a_part_of_two_or_three_samples_is_interpolated_linearly(n_contact):
-    """A contact part of 2 or 3 samples, the last ones off the grid, is linear between its samples:
-    checked per coordinate with numpy.interp (catches the part held constant at its first sample and a
-    broken linear branch)."""
+    """A contact part of 2 or 3 samples, the last ones off the grid, is linear between its samples, and
+    contact starts at the first grid time after the last approach sample, linear from that sample to the
+    first contact sample: checked per coordinate with numpy.interp (catches the part held constant at its
+    first sample and a broken linear branch)."""
     n = 30
     t = jittered_times(n, jitter={n - 1: 0.5, n - 2: 0.4})
     pos = parabola(t)
     contact = np.arange(n) >= n - n_contact
     grid, out, con = resample_uniform(t, pos, contact, DT)
-    tc, pc = t[contact], pos[contact]
+    c = n - n_contact
+    tc, pc = t[c - 1 :], pos[c - 1 :]  # the last approach sample and the contact samples
     want = np.column_stack([np.interp(grid[con], tc, pc[:, j]) for j in range(3)])
-    np.testing.assert_array_equal(con, grid >= tc[0])
+    np.testing.assert_array_equal(con, grid >= 0.5 * (t[c - 1] + t[c]))
     np.testing.assert_allclose(out[con], want, rtol=0, atol=1e-12)
     assert not np.allclose(out[con], pc[0])  # a constant would not do
     np.testing.assert_allclose(out[~con], parabola(grid[~con]), rtol=0, atol=1e-12)
@@ -356,3 +387,91 @@ def test_the_mean_shift_stops_after_twenty_steps():
     d = np.diff(t)
     assert np.median(d) == pytest.approx(DT, rel=1e-9)  # the mean shift starts at DT
     assert regular_mean_interval(t) == np.mean(d[: n_regular + steps])
+
+
+# --- regular stamps written imprecisely, gaps after contact ----------------------------------------
+
+
+def test_time_quantum_finds_the_resolution_stamps_are_written_with():
+    """Stamps of 60 Hz written to the millisecond (OpenSim) are multiples of 1 ms; to 0.1 ms, of 0.1 ms;
+    exact multiples of 1/64 s or of 1/60 s in binary, of none (catches a finer or coarser quantum)."""
+    t = np.arange(200) / 60.0
+    assert time_quantum(np.round(t, 3)) == 1e-3
+    assert time_quantum(np.round(t, 4)) == 1e-4
+    assert time_quantum(np.round(t, 2)) == 1e-2
+    assert time_quantum(t) == 0.0
+    assert time_quantum(3.0 + np.arange(50) * 2.0**-6 + 1e-7) == 0.0
+
+
+def test_grid_jitter_measures_stamps_against_their_regular_grid():
+    """Rounding to q strays up to q / 2 from the grid; jitter of +-j up to about j; a dropped frame is
+    not a stray stamp; a clock a little off the file's rate is absorbed by the fitted slope."""
+    dt = 1 / 60
+    t = np.arange(300) * dt
+    assert grid_jitter(np.round(t, 3), dt) == pytest.approx(1e-3 / 3 / dt, rel=0.02)  # k/60 s: 0, +-1/3 ms off
+    assert grid_jitter(np.round(np.arange(300) / 240.0, 3), 1 / 240) == pytest.approx(0.5e-3 * 240, rel=0.03)
+    rng = np.random.default_rng(1)
+    j = 0.3e-3
+    assert grid_jitter(t + rng.uniform(-j, j, len(t)), dt) == pytest.approx(j / dt, rel=0.15)
+    assert grid_jitter(np.delete(t, 50), dt) < 1e-9
+    assert grid_jitter(t * 1.001, dt) < 1e-9
+
+
+@pytest.mark.parametrize(
+    "fs, stamps, used_as_recorded",
+    [
+        (60.0, lambda t, rng: np.round(t, 3), True),  # OpenSim: 16/17 ms intervals, 4 % off
+        (240.0, lambda t, rng: np.round(t, 3), True),  # 4.17 ms at 240 Hz: intervals of 4 and 5 ms, 20 % off
+        (85.0, lambda t, rng: t + rng.uniform(-3e-4, 3e-4, len(t)), True),  # Optotrak: +-0.3 ms
+        (60.0, lambda t, rng: t + rng.uniform(-2e-3, 2e-3, len(t)), False),  # a VR log: +-2 ms
+    ],
+)
+def test_stamps_of_a_regular_rate_written_imprecisely_are_not_resampled(fs, stamps, used_as_recorded):
+    """The issue's time stamps: rounded to the millisecond, or jittered by much less than a frame, around
+    a regular rate: that rate, the samples used as recorded (the trial's timing says so); jitter of an
+    eighth of a frame is resampled (catches the old 2 % of an interval)."""
+    from skilllib.recordings import recordings_from_frame
+
+    rng = np.random.default_rng(7)
+    frames = []
+    for k in range(6):
+        t = stamps(np.arange(int(1.2 * fs)) / fs, rng)
+        y = 0.3 - 0.2 * np.clip(t - 0.2, 0, 0.8)
+        frames.append(
+            pd.DataFrame(
+                {"participant": "P", "trial": str(k), "t": t, "x": 0.0, "y": y, "z": 0.0, "contact": (t >= 0.9) * 1}
+            )
+        )
+    rec = recordings_from_frame(pd.concat(frames, ignore_index=True))
+    assert (rec.trials.status == "ok").all()
+    assert rec.fs == pytest.approx(fs, rel=2e-3)
+    assert rec.trials.timing.str.endswith(": used as recorded").all() == used_as_recorded
+    assert rec.trials.timing.str.startswith("resampled:").all() == (not used_as_recorded)
+    tr = rec.trial("P", "0")
+    assert np.array_equal(tr.t, frames[0].t.to_numpy()) == used_as_recorded
+
+
+def test_a_gap_after_contact_cuts_the_trial_and_a_gap_before_it_invalidates():
+    """A 0.2 s gap in the stamps after the first contact sample lies where the analysis never reads: the
+    trial is kept up to it, and says how many samples were left; the same gap during the approach makes
+    the trial invalid, naming the gap (catches invalidating both, or cutting both)."""
+    from skilllib.recordings import recordings_from_frame
+
+    fs = 100.0
+    frames = []
+    for k, gap_at in enumerate((0.95, 0.5, None)):
+        t = np.arange(120) / fs
+        if gap_at is not None:
+            t = np.where(t >= gap_at, t + 0.2, t)
+        y = 0.3 - 0.2 * np.clip(t - 0.2, 0, 0.7)
+        c = (t >= 0.9) * 1
+        frames.append(
+            pd.DataFrame({"participant": "P", "trial": str(k), "t": t, "x": 0.0, "y": y, "z": 0.0, "contact": c})
+        )
+    rec = recordings_from_frame(pd.concat(frames, ignore_index=True))
+    by = rec.trials.set_index("trial")
+    assert by.loc["0", "status"] == "ok" and by.loc["0", "timing"].startswith("cut at a 0.2100 s gap")
+    assert "(25 samples after it not used)" in by.loc["0", "timing"]
+    assert len(rec.trial("P", "0").t) == 95 and rec.trial("P", "0").contact[-1]
+    assert by.loc["1", "status"] == "invalid" and by.loc["1", "reason"].startswith("gap in the time stamps")
+    assert gap_after_contact(np.arange(10.0), np.zeros(10, bool), 1.0) is None
