@@ -289,7 +289,7 @@ assert proto_capped[small] and sum(proto_capped) == 1, (
 # ## Reading the figures
 #
 # Every figure of the pipeline is written beside `results.json`, as PNG (to look at) and SVG (to put
-# in a paper):
+# in a paper), and the segmentation pages as PNG only (pages for checking an export, not for a paper):
 
 # %%
 print(wrapped(", ".join(sorted(results["figures"]))))
@@ -302,10 +302,14 @@ FIGURES = set(
     "joint_velocities frame_mapping joint_accelerations executed_speed "
     "time_scales".split()
 )
-stems = {Path(f).stem for f in results["figures"]}
-assert sorted(results["figures"]) == sorted(
+pages = sorted(f for f in results["figures"] if f.startswith("segmentation-"))
+stems = {Path(f).stem for f in results["figures"] if f not in pages}
+assert sorted(set(results["figures"]) - set(pages)) == sorted(
     f"{s}.{e}" for s in stems for e in ("png", "svg")
 ), "text: 'Every figure ... is written ..., as PNG ... and SVG'"
+assert pages and all(f.endswith(".png") for f in pages), (
+    "text: 'segmentation pages as PNG only'"
+)
 assert stems == FIGURES, (
     "text: the table of figure files (sparc_sensitivity 'only with --sensitivity')"
 )
@@ -328,6 +332,7 @@ assert stems == FIGURES, (
 # | `executed_speed` | the prototype's tool speed against the simulated execution, as recorded and slowed by its time scale | chapter 10 |
 # | `time_scales` | the time scale each limit asks for and the one of every limit, with the binding limit | chapter 9 |
 # | `sparc_sensitivity` | only with `--sensitivity`: each selected trial's SPARC under the other settings against this run's; the silhouette sweep under every setting | chapter 6 |
+# | `segmentation-01.png`, ... | pages of small multiples, one panel per trial: speed against time over the whole recording, onset and contact marked, the analysed segment shaded, repaired samples crossed, the status and reason (every invalid trial first, then valid ones spread over the participants, at most three pages) | chapter 11 |
 #
 # Look at `trials_by_participant` first: chapter 11 drew it for the example file and showed how it
 # tells at once whether an export is right. Then the clusters and their prototypes, and what the robot must do to reproduce them:
@@ -544,13 +549,18 @@ r = rows(0)
 broken.loc[r[20], "t"] = broken.loc[r[18], "t"]  # time goes backwards
 r = rows(1)
 broken.loc[r[20], "t"] = broken.loc[r[19], "t"]  # a repeated time stamp
-broken.loc[rows(2)[10], "y"] = np.nan  # an empty cell
+r = rows(2)  # empty cells for 0.17 s of the approach: a gap too long to fill
+c = int(np.flatnonzero(broken.loc[r, "contact"].to_numpy())[0])
+broken.loc[r[c - 22 : c - 2], "y"] = np.nan
 broken.loc[rows(3)[10], "z"] = np.inf  # an infinite position
 broken.loc[rows(4), "contact"] = 0  # never touches the surface
-r = rows(5)  # never moves before contact: no onset
+r = rows(
+    5
+)  # never moves before contact: no onset (a still hand, 0.03 mm tracker noise)
 c = int(np.flatnonzero(broken.loc[r, "contact"].to_numpy())[0])
 xyz = ["x", "y", "z"]
-broken.loc[r[:c], xyz] = broken.loc[r[0], xyz].to_numpy(dtype=float)
+still = np.random.default_rng(5).normal(0, 3e-5, (c, 3))
+broken.loc[r[:c], xyz] = broken.loc[r[0], xyz].to_numpy(dtype=float) + still
 broken = broken.drop(rows(6)[3:])  # only 3 samples left
 # the first row of a trial moved to the end of the file: rows not contiguous
 first = rows(7)[0]
@@ -601,7 +611,10 @@ assert protos_broken != protos, "text: 'some prototypes change'"
 # %% [markdown]
 # The eight broken trials, and only they, are invalid, each with its own reason, which gives the line
 # of the file where it applies; the run ends with exit status 0, and every trial of the file is in
-# `results.json`. The other 192 trials keep the status they have in the intact file. Two of the broken
+# `results.json`. (A single empty cell, or a short run of them, does not break a trial: it is filled by
+# interpolation between the recorded samples around it and reported in the trial's `repairs`,
+# [chapter 11](11_your_data.ipynb).) The other 192 trials keep the status they have in the intact
+# file. Two of the broken
 # trials were selected in the intact file, so the clusters are computed on two trials fewer and some
 # prototypes change.
 #

@@ -56,22 +56,32 @@ work.mkdir()
 # ## Time stamps
 #
 # **The sampling rate** is not an option: it is read from the time stamps (the median over trials of
-# each trial's typical interval), so any rate works, as long as one file has one rate. Loggers of VR
-# and game engines stamp each sample with its frame time, which jitters by a few milliseconds, and now
-# and then drop a frame. A trial whose intervals deviate from the file's by more than the jitter
-# tolerance is **resampled** onto a uniform grid at the file's rate (cubic splines through the
-# positions, the approach and the samples in contact separately;
-# [`skilllib.recordings`](#skilllib.recordings)), and `results.json` says so for that trial
-# (`resampled`). A gap longer than the limit below cannot be bridged honestly: that trial is `invalid`,
-# with the gap and its line. The constants, from `skilllib.recordings`:
+# each trial's typical interval), so any rate works, as long as one file has one rate. Two kinds of
+# imperfect stamps must be told apart. Optical trackers sample on a regular clock and *write* the
+# stamps imprecisely: OpenSim rounds 60 Hz stamps to the millisecond (intervals of 16 and 17 ms, 4 %
+# apart), an Optotrak export jitters by a few tenths of a millisecond. Such stamps scatter around a
+# regular grid by much less than a frame, and the samples are used as recorded (the trial's `timing`
+# says so). Loggers of VR and game engines instead stamp each sample with the time it was taken, which
+# jitters by milliseconds, and now and then drop a frame: such a trial is **resampled** onto a uniform
+# grid at the file's rate (cubic splines through the positions, the approach and the samples in contact
+# separately; [`skilllib.recordings`](#skilllib.recordings)), and `results.json` says so for that trial
+# (`resampled`). No resampled sample is extrapolated: the approach spline is evaluated only within the
+# recorded approach, a grid time between the last approach sample and the first contact sample lies on
+# the straight line between them, and contact begins at their midpoint. A gap longer than the limit
+# below cannot be bridged honestly: after contact, where the analysis never looks, the trial is cut
+# there; before it, the trial is `invalid`, with the gap and its line. The constants, from
+# `skilllib.recordings`:
 
 # %%
 print(
     f"intervals within {sk.JITTER_TOLERANCE:.0%} of the file's: regular, "
     f"used as recorded;\n"
+    f"stamps within {sk.REGULAR_JITTER:.0%} of an interval (or their written "
+    f"resolution)\n  of a regular grid: regular, used as recorded;\n"
     f"otherwise the trial is resampled, unless an interval exceeds "
     f"{sk.MAX_GAP_INTERVALS:g} intervals\n"
-    f"  (more than two frames missing in a row): invalid;\n"
+    f"  (more than two frames missing in a row): invalid before contact,\n"
+    f"  the trial cut there after contact;\n"
     f"a trial whose median interval differs by more than {sk.RATE_TOLERANCE:.0%} "
     f"from the file's\n"
     f"  was sampled at another rate: invalid;\n"
@@ -80,6 +90,63 @@ print(
 )
 
 # %% [markdown]
+# Both cases on the generative model (synthetic): the same 150 movements at 60 Hz, recorded on the
+# grid, with the stamps written to the millisecond, and with each sample taken at a stamp jittered by
+# up to 2 ms (`CohortModel.stamp_jitter`). The contact speed, read at the last approach sample, is the
+# sample the selection rests on:
+
+# %%
+stamp_model = dict(n_participants=10, n_trials=15)
+on_grid = sk.generate_cohort(9, sk.CohortModel(**stamp_model))
+rounded = on_grid.frame.assign(t=on_grid.frame["t"].round(3))  # OpenSim's stamps
+jittered = sk.generate_cohort(9, sk.CohortModel(**stamp_model, stamp_jitter=0.002))
+stamps = {}
+for name, frame in (("on the grid", on_grid.frame), ("written to 1 ms", rounded),
+                    ("jittered +-2 ms", jittered.frame)):  # fmt: skip
+    rec = sk.load_recordings(frame)
+    f = sk.trial_features(rec)
+    stamps[name] = (rec, f)
+ref = stamps["on the grid"][1]
+stamp_table = pd.DataFrame(
+    {
+        name: {
+            "used as recorded": int((~f.resampled).sum()),
+            "resampled": int(f.resampled.sum()),
+            "median |contact speed change| (m/s)": (f.contact_speed - ref.contact_speed)
+            .abs()
+            .median(),
+            "status changed": int((f.status != ref.status).sum()),
+        }
+        for name, (rec, f) in stamps.items()
+    }
+).T.astype({"used as recorded": int, "resampled": int, "status changed": int})
+stamp_table.round(4)
+
+# %% tags=["remove-cell"]
+# checks of the claims below (hidden on the site; nbmake fails if one breaks)
+st_ = stamp_table
+assert st_.loc["written to 1 ms", "resampled"] == 0, (
+    "text: 'rounded stamps are used as recorded'"
+)
+assert st_.loc["written to 1 ms", "status changed"] <= 2, (
+    "text: 'rounded: one or two change'"
+)
+assert st_.loc["jittered +-2 ms", "used as recorded"] == 0, (
+    "text: 'jittered: resampled'"
+)
+assert st_.loc["jittered +-2 ms", "status changed"] <= 6, (
+    "text: 'a few of 150 change status'"
+)
+assert st_.loc["jittered +-2 ms", "median |contact speed change| (m/s)"] < 0.01, (
+    "text: 'contact speed within a few mm/s for the median trial'"
+)
+
+# %% [markdown]
+# The rounded stamps are used as they are; the jittered ones are resampled, the contact speed of the
+# median trial moves by a few mm/s, and a few of the 150 trials change status: those whose contact
+# speed lies at an edge of the selection window, or whose contact fell between two samples, where the
+# jitter leaves unknown which grid sample was the last before it.
+#
 # If your participants were recorded at different rates, split the file by rate and run each part.
 #
 # ## High sampling rates
@@ -357,8 +424,8 @@ assert none_reasons.str.contains("no rest before onset").mean() > 0.9, (
 assert vr_runs["auto"]["dataset"]["n_resampled"] == len(truth), (
     "text: 'every trial ... resampled'"
 )
-assert vr_filter["chosen_by"] == "winter residual analysis" and 6 < cut < 9, (
-    "text: 'a cut-off near 7 Hz'"
+assert vr_filter["chosen_by"] == "winter residual analysis" and 5 < cut < 7, (
+    "text: 'a cut-off near 6 Hz'"
 )
 assert abs(vr_filter["position_noise_m"] - 0.0005) < 0.0001, (
     "text: 'measures the 0.5 mm'"
@@ -367,17 +434,20 @@ n_sel_true = (truth.status == "selected").sum()
 assert abs(auto_row["selected"] - n_sel_true) <= 0.1 * len(truth), (
     "text: 'about as many selected'"
 )
-assert abs(auto_row["mean PV change (m/s)"]) < 0.01, (
-    "text: 'PV within 0.01 m/s on average'"
+assert -0.05 < auto_row["mean PV change (m/s)"] < -0.02, (
+    "text: 'PV ... about 0.03 m/s lower on average'"
 )
+assert (
+    abs(auto_row["mean PV change (m/s)"] - nt.loc[FREE, "mean PV change (m/s)"]) < 0.005
+), "text: 'as much as the noise-free recording filtered at the same cut-off'"
 assert 0.75 < rho[AUTO] < 0.85, "text: 'rank correlation about 0.8'"
 spread = valid_true["sparc"].std()
 assert 0.4 * spread < auto_row["SD of SPARC change"] < 0.8 * spread, (
     "text: 'changes about half its spread'"
 )
 free = nt.loc[FREE]
-assert rho[AUTO] < rho[FREE] < 0.9, (
-    "text: 'the filter alone ... noise-free recording ... not much better'"
+assert rho[FREE] < rho[AUTO] + 0.03 and rho[FREE] < 0.9, (
+    "text: 'the filter alone ... noise-free recording ... no better'"
 )
 assert free["SD of SPARC change"] > 0.7 * auto_row["SD of SPARC change"], (
     "text: 'most of the change is the filter's'"
@@ -387,12 +457,13 @@ assert auto_row["bands beyond the cut-off"] > 0.6 * n_valid_auto, (
     "text: 'most trials' bands'"
 )
 ten, fifteen = nt.loc["10 Hz"], nt.loc["15 Hz"]
-assert rho["10 Hz"] > rho[AUTO] and ten["invalid trials"] >= 1, (
-    "text: '10 Hz: a little closer, a trial lost'"
+assert rho["10 Hz"] > rho[AUTO] + 0.05 and ten["invalid trials"] == 0, (
+    "text: '10 Hz: closer, no trial lost'"
 )
-assert fifteen["invalid trials"] > 0.2 * len(truth) and rho["15 Hz"] < rho[AUTO], (
-    "text: '15 Hz loses a quarter of the trials and follows worse'"
+assert 0 < fifteen["invalid trials"] < 0.1 * len(truth), (
+    "text: '15 Hz loses a few trials'"
 )
+assert abs(rho["15 Hz"] - rho["10 Hz"]) < 0.03, "text: 'and follows no closer'"
 n_sel_auto = int(auto_row["selected"])
 note = f"of {n_sel_auto} selected trials, whose SPARC is partly the filter's"
 assert any(
@@ -403,20 +474,24 @@ assert any(
 # Without the filter most trials are lost to *no rest before onset*; with the default filter none is,
 # and about as many are selected as from the noise-free recording. The run's notes say that every trial
 # was resampled (the jitter) and that the positions were filtered: `auto` measures the 0.5 mm of noise
-# at rest and takes Winter's cut-off, near 7 Hz here (results.json `filter`, in
+# at rest and takes Winter's cut-off, near 6 Hz here (results.json `filter`, in
 # [its schema](../docs/results.md)).
 #
-# PV survives the filter, within 0.01 m/s on average. **SPARC does not survive unchanged**: its rank
+# PV comes out about 0.03 m/s lower on average, as much as from the noise-free recording filtered at
+# the same cut-off: the filter rounds the speed's peak, the noise does not raise it. **SPARC does not
+# survive unchanged**: its rank
 # correlation with the noise-free values is about 0.8, and its changes are about half its spread
 # across trials. The last row shows why: most of the change is the filter's own, since the noise-free
-# recording filtered at the same cut-off follows its unfiltered self not much better. The cut-off lies
+# recording filtered at the same cut-off follows its unfiltered self no better. The cut-off lies
 # inside the band where these short movements have their spectrum, so most trials' SPARC bands run
 # past it, into what the filter shaped; the pipeline counts those trials in a note (*SPARC's band
 # reaches above that cut-off in ... selected trials, whose SPARC is partly the filter's*). A higher
-# cut-off helps only a little: 10 Hz follows the noise-free SPARC slightly more closely and loses a
-# trial to the remaining noise; 15 Hz lets so much noise through that it loses about a quarter of the
-# trials and follows worse. [](#fig-noise-sparc) shows the default and 10 Hz against the noise-free
-# SPARC.
+# cut-off helps here: 10 Hz follows the noise-free SPARC more closely (the table's rank correlations)
+# and loses no trial; 15 Hz lets enough noise through to lose a few trials to *no rest before onset*
+# and follows no more closely than 10 Hz. Winter's rule balances distortion of the positions against
+# noise let through; SPARC, read from the speed's spectrum, would have preferred less distortion. So
+# the default is a safe choice for onset and PV, not the best one for SPARC: compare a higher cut-off
+# on your data. [](#fig-noise-sparc) shows the default and 10 Hz against the noise-free SPARC.
 
 # %%
 #| label: fig-noise-sparc
@@ -429,22 +504,25 @@ fig = skf.plot_sparc_against_reference(
 )
 
 # %% [markdown]
-# So with recordings this noisy: filter (the default does), trust PV, and read SPARC as a coarse
-# ranking that the filter has shaped, or record with less noise where smoothness is the question. The
+# So with recordings this noisy: filter (the default does), read PV as a few hundredths of a m/s low,
+# and SPARC as a coarse ranking that the filter has shaped, or record with less noise where smoothness is the question. The
 # cut-off is an option: `--lowpass 10` and the table above tell what a higher one keeps and costs on
 # your data; compare runs with `--sensitivity` for SPARC's own parameters (chapter 6).
 #
 # ## Summary
 #
-# - The sampling rate comes from the time stamps, one rate per file. Jitter and isolated dropped
-#   frames are resampled onto a uniform grid (`resampled` in results.json); longer gaps, and trials at
-#   another rate, make a trial invalid.
+# - The sampling rate comes from the time stamps, one rate per file. Stamps written to a coarse
+#   resolution or jittered by much less than a frame are a regular recording, used as recorded; real
+#   jitter and isolated dropped frames are resampled onto a uniform grid (`resampled` in results.json),
+#   interpolating, never extrapolating; longer gaps before contact, and trials at another rate, make a
+#   trial invalid.
 # - Speed is differentiated over a window of fixed duration (three samples at 60 Hz), so that
 #   recordings at 120 Hz or 1 kHz give the same trials, PV and SPARC as 60 Hz ones; only the contact
 #   speed, taken at the last sample before the touch, falls a little with the rate.
 # - Tracker noise is low-pass filtered before differentiating (`--lowpass`, default `auto`: a zero-lag
-#   Butterworth at Winter's cut-off, only when the noise at rest would give more than 5 mm/s of speed
-#   noise). The residual analysis finds the cut-off where the movement the filter distorts weighs as
+#   Butterworth at Winter's cut-off, only when the noise at rest, measured on each axis where the hand
+#   is still, would give more than 5 mm/s of speed noise; a decision near that limit is reported as
+#   borderline with what the other choice would change). The residual analysis finds the cut-off where the movement the filter distorts weighs as
 #   much as the noise it lets through.
-# - The filter keeps the trials, and PV; SPARC then partly measures the filter, which the run counts
-#   in a note. Where smoothness is the question, record with less noise.
+# - The filter keeps the trials; PV comes out a little low and SPARC partly measures the filter, which
+#   the run counts in a note. Where smoothness is the question, record with less noise.

@@ -15,7 +15,9 @@ __getattr__, __dir__, __all__ = _lazy.attach(
         "_filtering": [
             "choose_lowpass",
             "Lowpass",
+            "combine_rest_noise",
             "measure_rest_noise",
+            "rest_noise_rows",
             "NO_FILTER",
             "NOISE_FIT_RANGE",
             "parse_lowpass",

@@ -11,9 +11,11 @@ so the feature table is the same (tested on a ``LocalCluster``):
    percentile steps; the client takes the corpus's sampling interval and checks rates and units
    (:func:`skilllib.recordings.corpus_rate`, :func:`skilllib.recordings.check_corpus_units`) and that no trial
    lies in two partitions;
-2. **noise at rest**: each partition's per-trial estimates (:func:`skilllib.features.rest_noise_many`'s
-   median is taken over all of them) decide the low-pass filter of ``--lowpass auto``; when it filters,
-   the residual analysis reads the same trials as in memory (every k-th approach of the corpus);
+2. **noise at rest**: each partition's per-trial, per-axis estimates
+   (:func:`skilllib.features.rest_noise_rows`, combined over the corpus by
+   :func:`skilllib.features.combine_rest_noise`, as in memory) decide the low-pass filter of
+   ``--lowpass auto``; when it filters, or the decision is borderline, the residual analysis reads the
+   same trials as in memory (every k-th approach of the corpus);
 3. **features**: each partition's feature table with the corpus's rate and filter, concatenated in
    partition order.
 
@@ -48,8 +50,16 @@ from ..recordings import (
     read_parquet,
     recordings_from_frame,
 )
-from . import _vectorised as batch
-from ._filtering import SPEED_NOISE_LIMIT, Lowpass, choose_lowpass, residual_trials, speed_noise
+from ._filtering import (
+    BORDERLINE_FRACTION,
+    SPEED_NOISE_LIMIT,
+    Lowpass,
+    choose_lowpass,
+    combine_rest_noise,
+    residual_trials,
+    rest_noise_rows,
+    rest_samples,
+)
 from ._segmentation import MIN_DIFF_WINDOW, diff_window
 from ._table import trial_features
 
@@ -87,8 +97,15 @@ def partition_noise(path: str, rate: tuple[float, float]) -> dict[str, Any]:
             separate[int(i)] = d.pos[: int(hits[0])] if hits.size else d.pos
             length[i] = len(separate[int(i)])
     picked = ok & (length >= 4)
-    est = batch.rest_noise_estimates(pos, runs, length, picked, rate_fs(rate), separate)
-    return {"picked": int(picked.sum()), "estimates": est}
+    fs = rate_fs(rate)
+    n = rest_samples(fs)
+    start = runs.start
+    approaches = [  # only the rest windows are read; views, no copies
+        separate[int(i)] if int(i) in separate else pos[start[i] : start[i] + length[i]]
+        for i in np.flatnonzero(picked)
+        if length[i] >= n
+    ]
+    return {"picked": int(picked.sum()), "rows": rest_noise_rows(approaches, fs)}
 
 
 def partition_approaches(path: str, rate: tuple[float, float], which: Sequence[int]) -> list[np.ndarray]:
@@ -214,11 +231,10 @@ def _corpus_lowpass(files: list[str], client, rate: tuple[float, float], lowpass
     counts = [p["picked"] for p in noise_parts]
     if not sum(counts):
         return choose_lowpass("auto", [], fs, window)
-    est = np.concatenate([p["estimates"] for p in noise_parts])
-    noise = float(np.median(est)) if est.size else 0.0
+    noise = combine_rest_noise(np.concatenate([p["rows"] for p in noise_parts]), fs, window)
     offsets = np.cumsum([0, *counts])
     approaches: dict[int, np.ndarray] = {}
-    if speed_noise(noise, fs, window) > SPEED_NOISE_LIMIT:  # the residual analysis will read these trials
+    if noise.speed >= (1 - BORDERLINE_FRACTION) * SPEED_NOISE_LIMIT:  # the residual analysis reads these trials
         wanted = list(residual_trials(int(offsets[-1])))
         part = np.searchsorted(offsets, wanted, side="right") - 1
         for k in np.unique(part):

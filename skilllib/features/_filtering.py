@@ -374,25 +374,71 @@ def measure_rest_noise(approaches: Sequence[np.ndarray], fs: float, window: int 
     RestNoise
         The noise per axis and as one SD (m), the speed noise (m/s).
     """
+    return combine_rest_noise(rest_noise_rows(approaches, fs), fs, window)
+
+
+def rest_noise_rows(approaches: Sequence[np.ndarray], fs: float) -> np.ndarray:
+    """Each trial's rest-noise estimates, the part of :func:`measure_rest_noise` done trial by trial.
+
+    Row i: the median absolute fourth difference of x, y and z, and of the three pooled, in trial i's
+    rest window (:func:`rest_window`; the first :func:`rest_samples` samples when the hand rests there),
+    divided by 0.6745 sqrt(70). Trials shorter than the window have no row. A corpus split into parts
+    (a Dask cluster) gives the same result from its parts' rows stacked (:func:`combine_rest_noise`).
+
+    Parameters
+    ----------
+    approaches : sequence of numpy.ndarray
+        The trials' approach positions, each (N, 3) (m).
+    fs : float
+        The sampling rate (Hz).
+
+    Returns
+    -------
+    numpy.ndarray
+        (T, 4) the estimates of the noise's SD on x, y, z and pooled (m), one row per trial long enough.
+    """
     n = rest_samples(fs)
     use = [np.asarray(a, dtype=float) for a in approaches if len(a) >= n]
     if not use:
-        zero = np.zeros(3)
-        return RestNoise(zero, 0.0, 0.0 if window is None else speed_noise(0.0, fs, window), True, 0)
+        return np.empty((0, 4))
     windows = np.stack([a[:n] for a in use])  # (T, n, 3): most trials rest at their start
     moving = np.flatnonzero(_line_speed(windows, fs) >= REST_SPEED)
     for i in moving:
         s = rest_window(use[i], fs)
         windows[i] = use[i][s : s + n]
     d = np.abs(np.diff(windows, 4, axis=1))  # (T, n - 4, 3)
-    per_axis = np.median(np.median(d, axis=1), axis=0) / REST_NOISE_SCALE
+    return np.column_stack([np.median(d, axis=1), np.median(d.reshape(len(d), -1), axis=1)]) / REST_NOISE_SCALE
+
+
+def combine_rest_noise(rows: np.ndarray, fs: float, window: int | None = None) -> RestNoise:
+    """The :class:`RestNoise` of trials from their :func:`rest_noise_rows` (stacked over a corpus's parts).
+
+    Per axis the median over trials; when the axes agree within :data:`ISOTROPY_RATIO`, the common SD is
+    the median of the pooled estimates, else the RMS over the axes.
+
+    Parameters
+    ----------
+    rows : numpy.ndarray
+        (T, 4) the trials' estimates on x, y, z and pooled (m).
+    fs : float
+        The sampling rate (Hz).
+    window : int or None
+        The differentiating window (samples) for the speed noise; None: speed NaN.
+
+    Returns
+    -------
+    RestNoise
+        The noise per axis and as one SD (m), the speed noise (m/s).
+    """
+    rows = np.asarray(rows, dtype=float).reshape(-1, 4)
+    if not len(rows):
+        zero = np.zeros(3)
+        return RestNoise(zero, 0.0, 0.0 if window is None else speed_noise(0.0, fs, window), True, 0)
+    per_axis = np.median(rows[:, :3], axis=0)
     isotropic = bool(per_axis.max() <= ISOTROPY_RATIO * per_axis.min() or per_axis.max() < EDGE_NOISE_FLOOR_M**2)
-    if isotropic:
-        position = float(np.median(np.median(d.reshape(len(d), -1), axis=1) / REST_NOISE_SCALE))
-    else:
-        position = float(np.sqrt(np.mean(per_axis**2)))
+    position = float(np.median(rows[:, 3])) if isotropic else float(np.sqrt(np.mean(per_axis**2)))
     sn = np.nan if window is None else speed_noise(position, fs, window)
-    return RestNoise(per_axis, position, sn, isotropic, len(use))
+    return RestNoise(per_axis, position, sn, isotropic, len(rows))
 
 
 def rest_noise(approaches: Sequence[np.ndarray], fs: float) -> float:
@@ -539,7 +585,8 @@ class Lowpass:
         return butterworth_lowpass(pos, fs, self.cutoff_hz, self.order)
 
     def to_dict(self) -> dict[str, Any]:
-        """results.json ``filter``: kind, order, passes, cutoff_hz, design_hz, chosen_by, noise estimates."""
+        """results.json ``filter``: kind, order, passes, cutoff_hz, design_hz, chosen_by, noise estimates (one
+        SD and per axis), whether the decision was borderline and the cut-off the other choice would use."""
         on = self.cutoff_hz is not None
         return {
             "kind": "butterworth low-pass, forward-backward (zero lag)" if on else None,
@@ -551,6 +598,9 @@ class Lowpass:
             "position_noise_m": self.noise_m,
             "speed_noise_m_s": self.speed_noise,
             "speed_noise_limit_m_s": SPEED_NOISE_LIMIT if self.chosen_by.startswith(("auto", "winter")) else None,
+            "position_noise_axes_m": list(self.noise_axes) if self.noise_axes is not None else None,
+            "borderline": bool(self.borderline),
+            "alternative_cutoff_hz": self.alternative_hz,
         }
 
 

@@ -29,7 +29,7 @@ from scipy.signal import savgol_filter
 
 from .. import smoothness
 from ..recordings import Runs, first_true
-from ._filtering import REST_NOISE_SCALE, Lowpass, rest_samples
+from ._filtering import Lowpass
 from ._segmentation import (
     MIN_APPROACH_SAMPLES,
     MIN_SEGMENT_SAMPLES,
@@ -194,44 +194,3 @@ def _ldlj_by_length(out: dict[str, np.ndarray], seg_speed: dict[int, np.ndarray]
                 out["ldlj"][i] = smoothness.ldlj(seg_speed[i], fs)
             continue
         out["ldlj"][trials] = smoothness.ldlj_rows(np.stack([seg_speed[i] for i in trials]), fs)
-
-
-def rest_noise_estimates(
-    pos: np.ndarray,
-    runs: Runs,
-    approach_len: np.ndarray,
-    which: np.ndarray,
-    fs: float,
-    separate: Mapping[int, np.ndarray] | None = None,
-) -> np.ndarray:
-    """The per-trial estimates (m) whose median is :func:`skilllib.features.rest_noise`, of the
-    approaches of the ``which`` trials long enough for it: the first ``approach_len[i]`` rows of run
-    ``i`` of ``pos`` (R, 3) m, or ``separate[i]`` (the approach's positions, for resampled trials)."""
-    n = rest_samples(fs)
-    separate = dict(separate or {})
-    use = np.asarray(which, bool) & (approach_len >= n)
-    use[list(separate)] = False
-    est = [
-        np.median(np.abs(np.diff(pos[rows], 4, axis=1)).reshape(len(trials), -1), axis=1) / REST_NOISE_SCALE
-        for trials, rows in runs.blocks(use, length=np.full(len(runs), n))
-    ]
-    est += [
-        np.array([np.median(np.abs(np.diff(a[:n], 4, axis=0))) / REST_NOISE_SCALE])
-        for a in separate.values()
-        if len(a) >= n
-    ]
-    return np.concatenate(est) if est else np.empty(0)
-
-
-def rest_noise_many(
-    pos: np.ndarray,
-    runs: Runs,
-    approach_len: np.ndarray,
-    which: np.ndarray,
-    fs: float,
-    separate: Mapping[int, np.ndarray] | None = None,
-) -> float:
-    """:func:`skilllib.features.rest_noise` (m) of the approaches of the ``which`` trials (the median of
-    :func:`rest_noise_estimates`; 0 when no approach is long enough): the same value."""
-    est = rest_noise_estimates(pos, runs, approach_len, which, fs, separate)
-    return float(np.median(est)) if est.size else 0.0

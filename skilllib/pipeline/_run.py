@@ -429,6 +429,7 @@ def compute(
             f"{n_res} trial(s) had irregular time stamps (jitter or dropped frames) and were "
             f"resampled onto a uniform {recordings.fs:.4g} Hz grid (trials[].resampled)"
         )
+    result.messages += list(getattr(recordings, "notes", ()))  # what the readers noticed (none on a cluster)
     n_rep = results["dataset"]["n_repaired"]
     if n_rep:
         result.messages.append(

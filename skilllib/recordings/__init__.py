@@ -27,10 +27,13 @@ __getattr__, __dir__, __all__ = _lazy.attach(
         "_csv": ["detect_sep", "file_ids", "parse_sep", "read_table", "record_lines", "SEPARATORS"],
         "_defects": [
             "FILL_METHODS",
+            "frozen_samples",
+            "jump_samples",
             "MAX_ACCELERATION",
             "MAX_GAP_S",
             "Repair",
             "repair_trial",
+            "stale_leading",
         ],
         "_errors": ["DataFormatError", "MAX_QUOTE", "quote"],
         "_folder": ["FileProblem", "read_folder"],

@@ -45,7 +45,7 @@ Rules of :func:`read_c3d` (one file = one trial):
 * **frames**: the header (first and last frame), ``POINT:FRAMES`` and ``TRIAL:ACTUAL_START/END_FIELD``
   may disagree (vendors write them differently): the largest announced count the data hold is read
   (frames past a smaller count that are all zero bytes are the block padding, not frames), and the
-  disagreement is a note in ``attrs["c3d_notes"]``. When every announced count is more than the data
+  disagreement is a note in ``attrs["notes"]``. When every announced count is more than the data
   hold, the file is cut short: an error.
 * **time**: ``t = (f - 1 + i) / POINT:RATE`` (s) for point frame ``i = 0, 1, ...``, with ``f`` the first
   frame number of the file (``TRIAL:ACTUAL_START_FIELD`` or the header), so that frame 1 of the capture
@@ -196,7 +196,7 @@ def read_c3d(
     -------
     pandas.DataFrame
         ``t`` (s), ``x, y, z`` (m, the file's axes), ``contact`` (0/1 or NaN). ``attrs["units"]``: the unit
-        the file states (text: ``"m"``, ``"cm"``, ``"mm"``) or None; ``attrs["c3d_notes"]``: disagreements in
+        the file states (text: ``"m"``, ``"cm"``, ``"mm"``) or None; ``attrs["notes"]``: disagreements in
         the file that were resolved (list of text, e.g. frame counts).
 
     Raises
@@ -273,7 +273,7 @@ def _trial(path, layout, got, marker, contact_channel, threshold, units) -> pd.D
     contact = _contact(params, got, n_ez, path, t, rate, contact_channel, threshold)
     frame = pd.DataFrame({"t": t, "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2], "contact": contact})
     frame.attrs["units"] = _file_units(stated)
-    frame.attrs["c3d_notes"] = notes
+    frame.attrs["notes"] = notes
     return frame
 
 

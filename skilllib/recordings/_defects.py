@@ -15,12 +15,13 @@ a :class:`Repair` (the repaired samples, a per-sample ``repaired`` mask, the cou
    tracker at rest whose positions are rounded, to 0.01 mm say, repeats them). Both are dropped, at most
    :data:`MAX_STALE_FRAMES` in all.
 3. **Frozen positions** (:func:`frozen_samples`). A run of consecutive samples with exactly the same
-   (x, y, z) while the hand moved (it moved into the run, and the positions before and after the run
-   imply a speed above :data:`FROZEN_MIN_SPEED`) is a frozen tracker (occlusion): the repeats (not the
-   run's first sample, the last real position) are treated as missing. Exact repeats at rest are left as
-   recorded (they change no position by more than the tracker's resolution), and so is a run the hand
-   did not move into (a run from the first sample, or after still samples: a noise-free or coarsely
-   quantised recording resting before its movement).
+   (x, y, z) while the hand moved (the positions before and after the run imply a speed above
+   :data:`FROZEN_MIN_SPEED`, and either the hand moved into the run or the tracker caught up when it came
+   back: a step out of the run of at least :data:`MIN_JUMP_M` and :data:`REACQUIRE_RATIO` times faster
+   than the steps after it) is a frozen tracker (occlusion): the repeats (not the run's first sample, the
+   last real position) are treated as missing. Exact repeats at rest are left as recorded (they change no
+   position by more than the tracker's resolution), and so is a run the hand neither moved into nor
+   jumped out of (a noise-free or coarsely quantised recording resting before its movement starts).
 4. **Single-frame jumps** (:func:`jump_samples`). A sample whose deviation from the line through its two
    neighbours implies an acceleration above :data:`MAX_ACCELERATION` and that deviates by more than
    :data:`MIN_JUMP_M` and :data:`JUMP_NOISE_FACTOR` times the trial's own noise level is treated as
@@ -55,6 +56,7 @@ STALE_SPEED_RATIO = 5.0  #: dimensionless; the first step's speed over the media
 STALE_WINDOW = 5  #: steps after the first that give the speed it is compared with (samples)
 MAX_STALE_FRAMES = 3  #: at most this many leading frames are dropped as stale or duplicated (samples)
 FROZEN_MIN_SPEED = 0.02  #: m/s; exact repeats while the hand moves faster than this are a frozen tracker
+REACQUIRE_RATIO = 3.0  #: dimensionless; a step out of a run this much faster than the next steps: caught up
 MAX_ACCELERATION = 200.0  #: m/s^2; no hand accelerates this much (reaching peaks at 5-20 m/s^2)
 MIN_JUMP_M = 0.003  #: m; a jump deviates from its neighbours' line by more than this
 JUMP_NOISE_FACTOR = 10.0  #: dimensionless; ... and by more than this many times the trial's noise level
@@ -249,7 +251,18 @@ def frozen_samples(t: np.ndarray, pos: np.ndarray) -> np.ndarray:
             and before.size >= 1
             and float(np.linalg.norm(pos[s - 1] - pos[before[-1]]) / (t[s - 1] - t[before[-1]])) > FROZEN_MIN_SPEED
         )
-        if speed > FROZEN_MIN_SPEED and moving_in:
+        # or the tracker caught up when it came back: the step out of the run is a jump (at least
+        # MIN_JUMP_M, and faster than REACQUIRE_RATIO x the steps that follow it), the hand having moved on
+        caught_up = False
+        if after.size >= 2 and e - 1 >= 0:
+            k = int(after[0])
+            out_step = float(np.linalg.norm(pos[k] - pos[e - 1]))
+            nxt = after[1 : 1 + STALE_WINDOW]
+            follow = np.linalg.norm(np.diff(pos[np.r_[k, nxt]], axis=0), axis=1) / np.diff(t[np.r_[k, nxt]])
+            caught_up = out_step > MIN_JUMP_M and out_step / (t[k] - t[e - 1]) > REACQUIRE_RATIO * float(
+                np.median(follow)
+            )
+        if speed > FROZEN_MIN_SPEED and (moving_in or caught_up):
             out[s:e] = True
     return out
 
@@ -491,6 +504,7 @@ def repair_trials(
     max_gap_s: float = MAX_GAP_S,
     fill: str = "cubic",
     where: Callable[[int], str] | None = None,
+    max_span_m: float = MAX_SPAN_M,
 ) -> dict[int, Repair]:
     """:func:`repair_trial` of the ``which`` trials that show a sign of a defect, over flat arrays.
 
@@ -518,6 +532,9 @@ def repair_trials(
         ``"cubic"`` or ``"linear"`` (text).
     where : callable or None
         ``where(r)`` names row r in a reason (text).
+    max_span_m : float
+        A trial spanning more than this is not repaired (m): :data:`MAX_SPAN_M` when nothing states the
+        unit (such a trial is probably not in metres), larger when a header or ``--units`` states it.
 
     Returns
     -------
@@ -556,7 +573,7 @@ def repair_trials(
         r = rows[i]
         rec = pos[r][~nan[r]]
         span = float((rec.max(axis=0) - rec.min(axis=0)).max()) if len(rec) else 0.0
-        if not span <= MAX_SPAN_M:  # not metres (or a glitch): the unit checks judge it, nothing is repaired
+        if not span <= max_span_m:  # not metres (or a glitch): the unit checks judge it, nothing is repaired
             bad = np.flatnonzero(nan[r])
             if bad.size:
                 k = int(bad[0])

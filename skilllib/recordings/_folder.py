@@ -243,6 +243,7 @@ def read_trial_file(
         time_unit=time_unit if kind == "csv" else None,
     )
     out.attrs["units"] = stated
+    out.attrs["notes"] = list(df.attrs.get("notes", []))  # what the reader noticed but did not refuse
     return out
 
 
@@ -377,7 +378,7 @@ def read_folder(
         FileProblem(str(p), None, None, f"in a sub-sub-folder: only {root}/<participant>/<file> is read") for p in deep
     ]
     named.sort(key=lambda r: (natural_key(r[0]), natural_key(r[1]), str(r[2])))
-    frames, seen, stated = [], {}, set()
+    frames, seen, stated, notes = [], {}, set(), []
     for participant, trial, p in named:
         if (participant, trial) in seen:
             problems.append(
@@ -396,6 +397,7 @@ def read_folder(
             problems.append(FileProblem(str(p), participant, trial, _reason(e, p)))
             continue
         stated.add(df.attrs.get("units"))
+        notes += [f"{p.relative_to(root)}: {note}" for note in df.attrs.get("notes", [])]
         df = df.reindex(columns=list(TRIAL_COLUMNS))
         df.insert(0, "trial", trial)
         df.insert(0, "participant", participant)
@@ -412,4 +414,5 @@ def read_folder(
     frame["participant"] = frame["participant"].astype(object)
     frame["trial"] = frame["trial"].astype(object)
     frame.attrs["units"] = None if None in stated else stated.pop() if len(stated) == 1 else "mixed"
+    frame.attrs["notes"] = notes
     return frame, problems

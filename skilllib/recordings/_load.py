@@ -9,7 +9,7 @@ what ``python -m skilllib run --data`` calls). :func:`read_any` dispatches on th
 path                          read by                                                        trials
 ============================  =============================================================  ============
 a folder                      :func:`~skilllib.recordings.read_folder`                   one per file
-``*.c3d``                     :func:`~skilllib.recordings.read_c3d` (c3d)                   one
+``*.c3d``                     :func:`~skilllib.recordings.read_c3d` (ezc3d, checked)        one
 ``*.trc``                     :func:`~skilllib.recordings.read_trc`                         one
 a Vicon Nexus CSV export      :func:`~skilllib.recordings.read_nexus` (first line             one
 (``.csv``, ``.csv.gz``, ...)  ``Trajectories``, ...; recognised by content)
@@ -38,6 +38,7 @@ more than :data:`~skilllib.recordings.MAX_KNOWN_RANGE_M` is a glitch (``units_kn
 
 from __future__ import annotations
 
+import dataclasses
 import io
 import re
 from collections.abc import Mapping
@@ -286,6 +287,7 @@ def read_any(
         df.insert(0, "trial", trial)
         df.insert(0, "participant", participant)
         df[list(ID_COLUMNS)] = df[list(ID_COLUMNS)].astype(object)
+        df.attrs["notes"] = [f"{path}: {note}" for note in df.attrs.get("notes", [])]
         return df, []
     table = read_csv_table(path, columns=cols, sep=sep)
     if cols:
@@ -504,7 +506,8 @@ def load_recordings(
     elif kind is not None:
         places = np.array([f"sample {i + 1}" for i in range(len(frame))], dtype=object)
     rec = recordings_from_frame(frame[list(COLUMNS)], str(path), places=places, units_known=known, **repair)
-    return _with_problems(rec, problems, path)
+    notes = tuple(frame.attrs.get("notes", ()))
+    return _with_problems(dataclasses.replace(rec, notes=notes) if notes else rec, problems, path)
 
 
 def _with_problems(rec: Recordings, problems: list[FileProblem], root: Path) -> Recordings:
@@ -541,6 +544,7 @@ def _with_problems(rec: Recordings, problems: list[FileProblem], root: Path) -> 
         _rows={**rec._rows, **extra},
         _resampled=rec._resampled,
         _repaired=rec._repaired,
+        notes=rec.notes,
     )
 
 

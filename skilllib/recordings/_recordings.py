@@ -107,6 +107,9 @@ class Recordings:
         The sampling rate derived from the time stamps (Hz).
     source : str
         The file read, or ``<DataFrame>`` (text).
+    notes : tuple of str
+        What the readers noticed in the files but did not refuse (a TRC header announcing more frames than
+        the file holds, C3D frame counts that disagree, ...), each naming its file (text).
     """
 
     frame: pd.DataFrame
@@ -117,6 +120,7 @@ class Recordings:
     _resampled: dict = field(repr=False, default_factory=dict)  # key -> Trial: replaced (resampled, repaired)
     _repaired: dict = field(repr=False, default_factory=dict)  # key -> bool mask of the repaired samples
     _cache: dict = field(repr=False, default_factory=dict, compare=False)
+    notes: tuple = ()
 
     def trial(self, participant: Any, trial: Any) -> Trial:
         """The samples of one trial (whatever its status; resampled when its timing says so); KeyError if
@@ -423,6 +427,7 @@ def recordings_from_frame(
     repairs = defects.repair_trials(  # real-data defects: stale frames, frozen, jumps, gaps (counted, said)
         t_all, pos_all, c_all, trial_of_row, rows, ~np.array([bool(r) for r in reasons]),
         max_gap_s=max_gap_s, fill=fill, where=loc,
+        max_span_m=checks.MAX_KNOWN_RANGE_M if units_known else defects.MAX_SPAN_M,
     )  # fmt: skip
     for i, rp in repairs.items():
         reasons[i] = rp.reason or (

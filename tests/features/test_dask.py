@@ -94,3 +94,21 @@ def test_a_noisy_corpus_gets_the_in_memory_filter_on_the_cluster(tmp_path, clien
     assert got.lowpass.cutoff_hz is not None and got.lowpass.chosen_by == "winter residual analysis"
     assert got.lowpass == ref.attrs["lowpass"]
     pd.testing.assert_frame_equal(got.features, ref, check_exact=True)
+
+
+def test_noise_on_one_axis_is_seen_on_the_cluster(tmp_path, client):
+    """The foreign 100 Hz data with 0.5 mm of noise on the depth axis only (tests/features/foreign_data.py):
+    the partitions' per-axis estimates give the in-memory noise per axis and the same filter (the pooled
+    estimate the cluster used before read 0.5 um and left these trials unfiltered)."""
+    from foreign_data import foreign_frame
+
+    frame = foreign_frame()
+    p = frame["participant"].astype(str).to_numpy()
+    folder = write_parts(tmp_path / "foreign", frame, [int((p == p[-1]).argmax())])
+    got = partitions.corpus_features(folder, client)
+    ref = trial_features(read_recordings(folder))
+    lp = ref.attrs["lowpass"]
+    assert lp.cutoff_hz is not None and got.lowpass == lp
+    assert got.lowpass.noise_axes == pytest.approx(lp.noise_axes, rel=1e-12)
+    assert lp.noise_axes[2] > 20 * max(lp.noise_axes[:2])
+    pd.testing.assert_frame_equal(got.features, ref, check_exact=True)

@@ -458,9 +458,10 @@ def test_broken_trials_are_marked_and_the_rest_goes_on(tmp_path, capsys, small_f
     df.loc[i[15], "t"] = df.loc[i[14], "t"]  # a repeated time stamp
     (p_inf, t_inf), (p_non, t_non), (p_irr, t_irr), (p_off, t_off) = keys[5:9]
     df.loc[_rows(df, p_inf, t_inf)[25], "z"] = np.inf  # infinite position
-    i = _rows(df, p_non, t_non)  # no onset: at rest until contact
-    c = int(np.flatnonzero(df.loc[i, "contact"].to_numpy())[0])
-    df.loc[i[:c], ["x", "y", "z"]] = df.loc[i[0], ["x", "y", "z"]].to_numpy(dtype=float)
+    i = _rows(df, p_non, t_non)  # no onset: at rest until contact (a still hand with 0.03 mm tracker noise;
+    c = int(np.flatnonzero(df.loc[i, "contact"].to_numpy())[0])  # exact repeats then a step: a frozen marker)
+    still = np.random.default_rng(5).normal(0, 3e-5, (c, 3))
+    df.loc[i[:c], ["x", "y", "z"]] = df.loc[i[0], ["x", "y", "z"]].to_numpy(dtype=float) + still
     df = df.drop(_rows(df, p_irr, t_irr)[12:16])  # four samples missing in a row: a gap
     i = _rows(df, p_off, t_off)
     df.loc[i, "t"] = df.loc[i[0], "t"] + 2 * (df.loc[i, "t"] - df.loc[i[0], "t"])  # this trial at 50 Hz

@@ -14,7 +14,7 @@ from skilllib.pipeline import run
 BEFORE = Path(__file__).resolve().parents[1] / "fixtures" / "pipeline" / "results_before_issue21.json.gz"
 
 
-def schema_2(results: dict) -> dict:
+def schema_2(results: dict, axes: list[float]) -> dict:
     """Schema 1 (before issue 21) in the names of schema 2: ``feasible`` and ``time_scale`` cover every
     limit; the velocity limits' verdict is ``feasible_velocity``."""
     out = {"schema_version": 2, **results}
@@ -24,6 +24,8 @@ def schema_2(results: dict) -> dict:
     # and none fires on the cohort (every count 0, every repairs text empty)
     out["dataset"] = {**out["dataset"], "n_repaired": 0, "n_repaired_samples": 0}
     out["trials"] = [{**t, "repairs": "", "n_repaired": 0} for t in out["trials"]]
+    # the noise at rest is measured per axis too (issue 22); the cohort's decision is not borderline
+    out["filter"] = {**out["filter"], "position_noise_axes_m": axes, "borderline": False, "alternative_cutoff_hz": None}
     for p in out["transfer"]["prototypes"]:
         p["feasible_velocity"] = p.pop("feasible")
         del p["time_scale"]
@@ -36,7 +38,9 @@ def schema_2(results: dict) -> dict:
 def test_the_default_run_is_unchanged_by_the_redesign(tmp_path):
     run(out=tmp_path / "out", write_figures=False)
     got = json.loads((tmp_path / "out" / "results.json").read_text())
-    want = schema_2(json.loads(gzip.decompress(BEFORE.read_bytes())))
+    axes = got["filter"]["position_noise_axes_m"]  # new: the cohort's noise is isotropic, 0.03 mm per axis
+    assert len(axes) == 3 and all(abs(a / got["filter"]["position_noise_m"] - 1) < 0.2 for a in axes)
+    want = schema_2(json.loads(gzip.decompress(BEFORE.read_bytes())), axes)
     for r in (got, want):
         r.pop("skilllib_version")
     assert got.keys() == want.keys()

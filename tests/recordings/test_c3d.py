@@ -3,7 +3,7 @@
 Small files are written at test time by both libraries: ezc3d's writer (the reader's own library) and the
 ``c3d`` package's ``Writer`` (integer storage, its header conventions); damaged files are made by hand from
 them. Every damaged, truncated, garbage or hostile file must give one :class:`DataFormatError` naming the
-file, never a crash or a hang of the test process. The real recordings in ``tests/fixtures/real`` (see its
+file, never a crash or a hang of the test process. The real recordings in ``data/real`` (see its
 README) are checked against ezc3d read directly.
 """
 
@@ -32,7 +32,7 @@ from skilllib.recordings import (
 )
 
 FS = 100.0
-REAL = Path(__file__).parents[1] / "fixtures" / "real"
+REAL = Path(__file__).resolve().parents[2] / "data" / "real"
 
 
 def approach(n: int = 80, fs: float = FS, drop: float = 0.12) -> np.ndarray:
@@ -349,7 +349,7 @@ def test_first_frame_0_or_1_keeps_every_frame_and_starts_at_0_s(tmp_path, writer
     assert len(df) == 30 and df["t"].iloc[0] == 0.0
     np.testing.assert_allclose(df["t"].to_numpy(), np.arange(30) / FS, atol=1e-12)
     np.testing.assert_allclose(df[["x", "y", "z"]].to_numpy(), pos, rtol=1e-6, atol=1e-8)
-    assert df.attrs["units"] == "mm" and df.attrs["c3d_notes"] == []
+    assert df.attrs["units"] == "mm" and df.attrs["notes"] == []
 
 
 @pytest.mark.parametrize("scale", [-1.0, -0.1, 0.1, 0.05])
@@ -410,7 +410,7 @@ def test_header_and_parameter_frame_counts_disagree_the_data_present_are_read(tm
     path = write_ez(tmp_path / "a.c3d", {"tip": pos})
     patch(path, {8: struct.pack("<H", 45)})  # the header announces 45 frames, POINT:FRAMES 30, the data 30
     df = read_c3d(path)
-    assert len(df) == 30 and "frame counts disagree (the header 45, POINT:FRAMES 30)" in df.attrs["c3d_notes"][0]
+    assert len(df) == 30 and "frame counts disagree (the header 45, POINT:FRAMES 30)" in df.attrs["notes"][0]
     patch(path, {8: struct.pack("<H", 20)})  # the header 20: the data hold 30 (POINT:FRAMES)
     assert len(read_c3d(path)) == 30
     raw = path.read_bytes()
@@ -548,7 +548,7 @@ def test_a_folder_of_c3d_files_with_a_damaged_one(tmp_path):
     assert problems[0].reason.startswith(("not a readable C3D file", "file cut short"))
 
 
-# --- real recordings (tests/fixtures/real, README there) ----------------------------------------------
+# --- real recordings (data/real, README there) ----------------------------------------------
 
 
 def test_real_vicon_nexus_file_pyomeca():
@@ -558,7 +558,7 @@ def test_real_vicon_nexus_file_pyomeca():
     labels = c["parameters"]["POINT"]["LABELS"]["value"]
     tails = [lab.rsplit(":", 1)[-1] for lab in labels]
     assert len(labels) == 51 and {"WRIST", "INDEX"} <= set(tails)
-    assert len(df) == 580 and df.attrs["units"] == "mm" and df.attrs["c3d_notes"] == []
+    assert len(df) == 580 and df.attrs["units"] == "mm" and df.attrs["notes"] == []
     np.testing.assert_allclose(np.diff(df["t"]), 0.01, atol=1e-12)
     assert df["t"].iloc[0] == 0.0  # the header's first frame is 1
     k = tails.index("INDEX")

@@ -12,10 +12,9 @@ from hypothesis import strategies as st
 
 import skilllib as sk
 from skilllib.datasets import cohort_path
-from skilllib.recordings import recordings_from_frame, repair_trial
-from skilllib.recordings._defects import frozen_samples, jump_samples, stale_leading
+from skilllib.recordings import frozen_samples, jump_samples, recordings_from_frame, repair_trial, stale_leading
 
-KINESIS = Path(__file__).resolve().parents[1] / "fixtures" / "real" / "kinesis_rtgData.txt"
+KINESIS = Path(__file__).resolve().parents[2] / "data" / "real" / "kinesis_rtgData.txt"
 FS = 100.0
 
 
@@ -260,3 +259,33 @@ def test_a_spike_between_still_samples_is_a_jump_not_a_freeze():
     r = repair_trial(t, pos, np.zeros(60, bool))
     assert r.reason == "" and r.n_jumps == 1 and r.n_frozen == 0
     assert np.flatnonzero(r.repaired).tolist() == [30] and np.allclose(r.pos, 0.0)
+
+
+def test_a_whole_body_recording_of_known_unit_is_repaired_and_kept():
+    """An overground walk spanning 4 m in metres with one missing sample: with the unit stated
+    (``--units m``) the gap is filled and the trial kept; with nothing stating the unit the span reads as
+    'not metres' and nothing is repaired (catches the 2 m plausibility limit applied to a known unit)."""
+    t = np.arange(300) / 100.0
+    x = 1.3 * t + 0.02 * np.sin(2 * np.pi * t)  # 1.3 m/s: 3.9 m in 3 s
+    pos = np.column_stack([x, 0.9 + 0.03 * np.sin(4 * np.pi * t), 0.1 * np.ones_like(t)])
+    pos[150, 0] = np.nan
+    df = frame_of(t, pos, t >= 2.5, "walk")
+    known = sk.load_recordings(df, units="m")
+    assert known.trials.status.iloc[0] == "ok" and known.trials.n_repaired.iloc[0] == 1
+    unknown = recordings_from_frame(df)
+    assert unknown.trials.status.iloc[0] == "invalid" and unknown.trials.repairs.iloc[0] == ""
+
+
+def test_a_marker_frozen_at_rest_that_jumps_when_it_comes_back_is_frozen():
+    """The Optotrak pattern (kinesis): the marker freezes while the hand is still, the hand moves off, and
+    the tracker catches up with a jump; the repeats are frozen (the hand did not move into the run, but
+    the step out of it is a jump far faster than the steps after it). A still hand whose samples repeat
+    and then start moving smoothly is not (catches both the old rule and a rule without the jump)."""
+    t, pos, c = reach(3)
+    onset = int(np.searchsorted(t, 1.0))
+    frozen = pos.copy()
+    frozen[onset - 5 : onset + 25] = frozen[onset - 5]  # frozen from rest well into the movement
+    assert np.flatnonzero(frozen_samples(t, frozen)).tolist() == list(range(onset - 4, onset + 25))
+    still = pos.copy()
+    still[: onset - 2] = still[0]  # a noise-free still hand, then the movement starts smoothly
+    assert not frozen_samples(t, still).any()

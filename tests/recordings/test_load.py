@@ -114,3 +114,25 @@ def test_pipeline_run_takes_a_dataframe(cohort, reference):
     res = pipeline.run(cohort.frame, None, lowpass="none").results
     assert res["dataset"]["path"] == "<DataFrame>" and res["dataset"]["n_trials"] == len(reference)
     assert [t["sparc"] for t in res["trials"]] == pytest.approx(reference.sparc.tolist(), nan_ok=True)
+
+
+def test_what_a_reader_notes_reaches_the_recordings_and_the_run(tmp_path, capsys):
+    """A TRC header announcing 652 frames over 120 rows is read (the data present are believed) and the
+    note names the file, read alone or in a folder, and is printed by run (issue 22: a header frame count
+    that disagrees passed silently)."""
+    from skilllib.recordings import load_recordings
+    from skilllib.recordings import write_trc as write_trc_file
+
+    t = np.arange(120) / 100
+    y = 0.3 - 0.2 * np.clip(t - 0.3, 0, 0.5)
+    p = write_trc_file(tmp_path / "lab" / "P1_1.trc", {"tip": np.column_stack([0 * t, y, 0 * t])}, t)
+    lines = p.read_text().splitlines()
+    lines[2] = lines[2].replace("\t120\t", "\t652\t", 1)
+    p.write_text("\n".join(lines) + "\n")
+    alone = load_recordings(p, contact_height=0.2)
+    assert alone.notes == (f"{p}: header announces 652 frames, file has 120",)
+    assert len(alone.trial("P1", "1").t) == 120
+    folder = load_recordings(p.parent, contact_height=0.2)
+    assert folder.notes == ("P1_1.trc: header announces 652 frames, file has 120",)
+    main(["run", "--data", str(p), "--contact-height", "0.2", "--out", str(tmp_path / "o"), "--no-figures"])
+    assert f"note: {p}: header announces 652 frames, file has 120" in capsys.readouterr().out

@@ -22,7 +22,7 @@ from skilllib.recordings import (
 )
 
 RATE = 100.0
-ADL = Path(__file__).resolve().parents[1] / "fixtures" / "real" / "ue-adl-forward-reach"
+ADL = Path(__file__).resolve().parents[2] / "data" / "real" / "ue-adl-forward-reach"
 ADL_ALL = Path("/work/shared/real-recordings/ue-adl-forward-reach")  # the 160 files (development set)
 
 

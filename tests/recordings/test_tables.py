@@ -30,7 +30,7 @@ from skilllib.recordings import (
 )
 
 FS = 64.0  # Hz: 1/64 s is exact in binary
-REAL = Path(__file__).resolve().parents[1] / "fixtures" / "real"
+REAL = Path(__file__).resolve().parents[2] / "data" / "real"
 KINESIS = REAL / "kinesis_rtgData.txt"
 SEPS = {",": "commas", "\t": "tabs", ";": "semicolons"}
 
