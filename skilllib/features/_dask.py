@@ -28,7 +28,12 @@ The workers need skilllib installed and the dataset's path readable at the same 
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+import contextlib
+import gc
+import logging
+import signal
+import threading
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -137,7 +142,7 @@ def rate_fs(rate: tuple[float, float]) -> float:
 class DistributedFeatures:
     """What :func:`corpus_features` computed: the feature table (all partitions, in order), the corpus's
     sampling rate ``fs`` (Hz) and ``rate`` (ref, dt in s), the filter, the partition files and the
-    partition of each trial (aligned with the table)."""
+    partition of each trial (aligned with the table), and the notes on the dataset's entries not read."""
 
     features: pd.DataFrame
     fs: float
@@ -145,6 +150,7 @@ class DistributedFeatures:
     lowpass: Lowpass
     files: list[str]
     partition: np.ndarray
+    notes: tuple = ()
 
     def recordings_of(self, k: int) -> Recordings:
         """The recordings of partition ``k``, read with the corpus's rate (on the client)."""
@@ -158,17 +164,91 @@ def client_for(workers: int | None = None, scheduler: str | None = None):
 
     if scheduler:
         return Client(scheduler)
-    cluster = LocalCluster(n_workers=int(workers or 1), threads_per_worker=1, processes=True, dashboard_address=":0")
+    cluster = LocalCluster(
+        n_workers=int(workers or 1),
+        threads_per_worker=1,
+        processes=True,
+        dashboard_address=":0",
+        silence_logs=QUIET_LEVEL,  # the workers' own logs ("Compute Failed" for a bad file): the error says it
+    )
     client = Client(cluster)
     client._skilllib_cluster = cluster  # closed by close_client
     return client
 
 
 def close_client(client) -> None:
+    """Close ``client`` and the LocalCluster :func:`client_for` started with it (quietly, also after Ctrl-C:
+    a second Ctrl-C while closing is ignored, so that no worker process is left behind)."""
     cluster = getattr(client, "_skilllib_cluster", None)
-    client.close()
-    if cluster is not None:
-        cluster.close()
+    in_main = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if in_main else None
+    try:
+        with contextlib.suppress(Exception):
+            client.close(timeout=CLOSE_TIMEOUT_S)
+        if cluster is not None:
+            with contextlib.suppress(Exception):
+                cluster.close(timeout=CLOSE_TIMEOUT_S)
+    finally:
+        if in_main:
+            signal.signal(signal.SIGINT, previous)
+
+
+def _block_sigint() -> tuple | None:
+    """While a LocalCluster starts: SIGINT ignored, so that the worker processes started meanwhile inherit
+    that (a Python process leaves an ignored SIGINT ignored) and a Ctrl-C, which the terminal sends to every
+    process of the command, reaches only the client, which closes the cluster (the workers print no
+    traceback); and blocked in this (the main) thread, so that a Ctrl-C meanwhile is held, not lost.
+    Returns what :func:`_unblock_sigint` restores (None: nothing changed, not the main thread)."""
+    if threading.current_thread() is not threading.main_thread():
+        return None
+    blocked = hasattr(signal, "pthread_sigmask") and signal.SIGINT not in signal.pthread_sigmask(
+        signal.SIG_BLOCK, {signal.SIGINT}
+    )
+    return signal.signal(signal.SIGINT, signal.SIG_IGN), blocked
+
+
+def _unblock_sigint(saved: tuple | None) -> None:
+    """Undo :func:`_block_sigint`; a SIGINT held meanwhile is delivered now (KeyboardInterrupt)."""
+    if saved is not None:
+        handler, blocked = saved
+        signal.signal(signal.SIGINT, handler)
+        if blocked:
+            signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+
+
+#: The level distributed's and asyncio's loggers are held at during a cluster run (above CRITICAL: none of
+#: their lines is printed). What goes wrong reaches the run as an exception: one line of the command (an
+#: interrupted gather's tasks, a worker killed while closing, a worker's failed task are not news then).
+QUIET_LEVEL = logging.CRITICAL + 1
+
+#: Seconds the client and the LocalCluster are given to close.
+CLOSE_TIMEOUT_S = 10
+
+
+@contextlib.contextmanager
+def quiet_logs(names: Sequence[str] = ("distributed", "asyncio", "tornado")) -> Iterator[None]:
+    """Hold the loggers ``names`` at :data:`QUIET_LEVEL` within the block; their levels are restored after.
+
+    Parameters
+    ----------
+    names : sequence of str
+        The loggers' names (text).
+
+    Returns
+    -------
+    contextlib.AbstractContextManager
+        The block's context (nothing to bind).
+    """
+    loggers = [logging.getLogger(n) for n in names]
+    levels = [lg.level for lg in loggers]
+    for lg in loggers:
+        lg.setLevel(QUIET_LEVEL)
+    try:
+        yield
+    finally:
+        gc.collect()  # tasks of an interrupted gather report "exception never retrieved" when collected: now
+        for lg, level in zip(loggers, levels):
+            lg.setLevel(level)
 
 
 def corpus_features(
@@ -183,7 +263,8 @@ def corpus_features(
     onset_speed, min_samples). Raises DataFormatError as the in-memory path does, and when a trial lies
     in two partitions."""
     path = Path(path)
-    files = [str(f) for f in parquet_files(path, natural_key)]
+    skipped: list = []  # hidden, AppleDouble, _metadata, stray files: not read, said in the notes
+    files = [str(f) for f in parquet_files(path, natural_key, skipped)]
     if not files:
         raise DataFormatError(f"{path}: no Parquet files in this folder")
     parts = client.gather(client.map(partition_rates, files, pure=False))
@@ -214,8 +295,9 @@ def corpus_features(
     features = pd.concat(tables, ignore_index=True)
     features.attrs["lowpass"] = filt
     partition = np.repeat(np.arange(len(files)), [len(t) for t in tables])
+    notes = tuple(f"{Path(q).name}: skipped: {reason}" for q, reason in skipped)  # as in memory
     return DistributedFeatures(
-        features, rate_fs(rate) if np.isfinite(rate[1]) else np.nan, rate, filt, files, partition
+        features, rate_fs(rate) if np.isfinite(rate[1]) else np.nan, rate, filt, files, partition, notes
     )
 
 
@@ -258,6 +340,7 @@ class PartitionedRecordings:
 
     def __init__(self, result: DistributedFeatures, source: str) -> None:
         self.result, self.fs, self.source = result, result.fs, source
+        self.notes = result.notes  # the dataset's entries not read, as the in-memory path says them
         f = result.features
         self._where = dict(zip(zip(f["participant"], f["trial"]), result.partition))
 
@@ -330,9 +413,16 @@ def cluster_features(
         )
     if workers is not None and (isinstance(workers, bool) or int(workers) < 1):
         raise ClusterOptionError(f"workers must be a number of worker processes >= 1, got {workers!r}")
-    client = client_for(workers, scheduler)
-    try:
-        result = corpus_features(data, client, lowpass=lowpass, options={"sparc_params": dict(sparc_params)})
-    finally:
-        close_client(client)
+    with quiet_logs():  # one line for what goes wrong, as in memory (a bad file, Ctrl-C): no cluster logs
+        blocked = _block_sigint()  # a Ctrl-C while the cluster starts is held until it can be closed
+        try:
+            client = client_for(workers, scheduler)
+        except BaseException:
+            _unblock_sigint(blocked)
+            raise
+        try:
+            _unblock_sigint(blocked)  # a Ctrl-C held during start-up is raised here, and the cluster closed
+            result = corpus_features(data, client, lowpass=lowpass, options={"sparc_params": dict(sparc_params)})
+        finally:
+            close_client(client)
     return PartitionedRecordings(result, str(data)), result.features

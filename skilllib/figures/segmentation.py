@@ -102,9 +102,19 @@ def _speeds(t: np.ndarray, pos: np.ndarray, c: int, fs: float, lowpass: Lowpass 
         return np.full(len(pos), np.nan), np.full(c, np.nan)
     if lowpass is not None and lowpass.cutoff_hz is not None and c >= 2 and np.isfinite(pos[:c]).all():
         pos = np.concatenate([lowpass.apply(pos[:c], fs), pos[c:]])
-    whole = np.linalg.norm(velocity(pos, fs), axis=1) if len(pos) >= 2 else np.full(len(pos), np.nan)
-    approach = np.linalg.norm(velocity(pos[:c], fs), axis=1) if c >= 2 else np.full(c, np.nan)
-    return whole, approach
+    return _run_speed(pos, fs), _run_speed(pos[:c], fs)
+
+
+def _run_speed(pos: np.ndarray, fs: float) -> np.ndarray:
+    """The speed (m/s) of ``pos`` (m), differentiated over each run of samples with a position (an invalid
+    trial can keep a gap too long to fill); NaN at the missing samples and in runs of fewer than 2."""
+    out = np.full(len(pos), np.nan)
+    have = np.isfinite(pos).all(axis=1) if len(pos) else np.zeros(0, dtype=bool)
+    edges = np.diff(np.concatenate([[0], have.astype(np.int8), [0]]))
+    for a, b in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)):
+        if b - a >= 2:
+            out[a:b] = np.linalg.norm(velocity(pos[a:b], fs), axis=1)
+    return out
 
 
 def _draw_trial(ax: plt.Axes, recordings: Recordings, row: Any, lowpass: Lowpass | None) -> dict[str, bool]:

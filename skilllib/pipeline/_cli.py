@@ -5,7 +5,8 @@ Exit status: 0 on success; 2 for a file that cannot be read, a bad option or an 
 be used (one line on stderr, no traceback); 3 when the run finished but too few trials were selected to
 find prototypes (results.json is written, with every trial); 1 for an unexpected error (one line;
 ``--debug`` shows the traceback); 130 when interrupted (Ctrl-C), at any point; 141 when standard output
-was closed early (as ``| head``), quietly; 143 when terminated (SIGTERM), cleaned up as after Ctrl-C.
+was closed early (as ``| head``) or is full (``> /dev/full``), quietly; 143 when terminated (SIGTERM),
+cleaned up as after Ctrl-C.
 
 Start-up is kept light: ``--help`` and ``--version`` import neither pandas nor scikit-learn,
 roboticstoolbox or matplotlib; those are imported when a run starts.
@@ -14,12 +15,17 @@ roboticstoolbox or matplotlib; those are imported when a run starts.
 from __future__ import annotations
 
 import argparse
+import contextlib
+import errno
 import os
+import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 import threading
 from collections.abc import Sequence
+from pathlib import Path
 
 from .. import __version__
 
@@ -198,7 +204,7 @@ def _parser() -> argparse.ArgumentParser:
         default=DEFAULT_FC,
         metavar="HZ",
         help=f"SPARC's maximum cut-off frequency in Hz (default {DEFAULT_FC:g}, the paper's 0-20 Hz; "
-        "at most the Nyquist frequency of the recordings)",
+        "below the Nyquist frequency of the recordings)",
     )
     r.add_argument(
         "--amp-th",
@@ -238,7 +244,45 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
+def _writable(folder: Path) -> bool:
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return False
+    return os.access(folder, os.W_OK)
+
+
+def _matplotlib_dir() -> str | None:
+    """A private, writable configuration and cache folder for matplotlib (``MPLCONFIGDIR``, removed at the
+    end of the run) when its own (``~/.config/matplotlib``, ``~/.cache/matplotlib`` or the XDG ones) cannot
+    be written, as with a read-only HOME; else None. Otherwise matplotlib, which roboticstoolbox imports even
+    when no figure is drawn, prints warnings on stderr before anything the run says."""
+    if "matplotlib" in sys.modules or os.environ.get("MPLCONFIGDIR"):
+        return None
+    try:
+        home = Path.home()
+    except (KeyError, RuntimeError):
+        home = None
+    config = os.environ.get("XDG_CONFIG_HOME") or (home and home / ".config")
+    cache = os.environ.get("XDG_CACHE_HOME") or (home and home / ".cache")
+    if config and cache and all(_writable(Path(d) / "matplotlib") for d in (config, cache)):
+        return None
+    return tempfile.mkdtemp(prefix="skilllib-matplotlib-")
+
+
 def _run(args: argparse.Namespace) -> int:
+    private = _matplotlib_dir()
+    if private is None:
+        return _run_analysis(args)
+    os.environ["MPLCONFIGDIR"] = private  # before roboticstoolbox (and with it matplotlib) is imported
+    try:
+        return _run_analysis(args)
+    finally:
+        os.environ.pop("MPLCONFIGDIR", None)
+        shutil.rmtree(private, ignore_errors=True)
+
+
+def _run_analysis(args: argparse.Namespace) -> int:
     from tqdm.auto import tqdm
 
     from ..recordings import DataFormatError
@@ -351,7 +395,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     -------
     int
         The exit status: 0 success, 1 unexpected error, 2 the user's error, 3 too few selected trials for
-        prototypes, 130 interrupted (Ctrl-C), 141 standard output closed early, 143 terminated (SIGTERM)
+        prototypes, 130 interrupted (Ctrl-C), 141 standard output closed early or full, 143 terminated (SIGTERM)
         (dimensionless).
 
     Raises
@@ -372,9 +416,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     except _Terminated:  # the output folder is left as it was, as after Ctrl-C
         print("error: terminated", file=sys.stderr)
         return 143
-    except BrokenPipeError:  # stdout closed early (| head): end quietly, as Unix tools do
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
+    except OSError as e:  # stdout closed early (| head) or full (> /dev/full): end quietly, as Unix tools do
+        if not isinstance(e, BrokenPipeError) and e.errno not in (errno.ENOSPC, errno.EIO, errno.EBADF):
+            raise
+        with contextlib.suppress(OSError, ValueError):  # what is still buffered goes nowhere at exit
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, sys.stdout.fileno())
         return 141
     finally:
         if in_main_thread:

@@ -135,6 +135,12 @@ def check_sparc_params(fc: float, amp_th: float, padlevel: int) -> dict[str, flo
 MAX_SEED = 2**32 - 1
 
 
+#: The smallest joint limit accepted (rad/s, rad/s^2, N m): below it the time scale a limit asks for
+#: (a peak over the limit) overflows. Limits above it that still stop the arm are reported, not simulated
+#: (:data:`skilllib.robot.MAX_TIME_SCALE`).
+MIN_LIMIT = 1e-12
+
+
 def _max_workers() -> int:
     """The most local Dask workers a run starts: one single-threaded process per core of this machine."""
     return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
@@ -190,17 +196,59 @@ def check_options(
     except ValueError as e:
         raise OptionError(str(e)) from None
     try:
-        return arm.with_limits(qd_max, qdd_max, tau_max)
+        out = arm.with_limits(qd_max, qdd_max, tau_max)
     except ValueError as e:
         raise OptionError(f"{e} ({arm.robot.name}, {arm.n} joints)") from None
+    for name, given, unit in (
+        ("qd_max", qd_max, "rad/s"),
+        ("qdd_max", qdd_max, "rad/s^2"),
+        ("tau_max", tau_max, "N m"),
+    ):
+        least = None if given is None else float(np.min(np.asarray(given, dtype=float)))
+        if least is not None and least < MIN_LIMIT:
+            raise OptionError(
+                f"{name} must be at least {MIN_LIMIT:g} {unit}, got {least:g}: an arm that slow does not move "
+                f"(the time scale it asks for overflows)"
+            )
+    return out
+
+
+#: A sampling rate within this relative distance of a whole number of Hz is taken to be that nominal rate
+#: (60 Hz for the 59.98 Hz that jittered or imprecisely written stamps of a 60 Hz system give).
+NOMINAL_RATE_RTOL = 1e-3
+
+
+def nominal_rate(fs: float) -> float:
+    """The nominal sampling rate behind a rate estimated from time stamps: the nearest whole number of Hz
+    when within :data:`NOMINAL_RATE_RTOL`, else ``fs`` itself.
+
+    Parameters
+    ----------
+    fs : float
+        The sampling rate estimated from the time stamps (Hz).
+
+    Returns
+    -------
+    float
+        The nominal rate (Hz); NaN for NaN.
+    """
+    whole = float(np.round(fs))
+    return whole if np.isfinite(fs) and whole > 0 and abs(fs / whole - 1) <= NOMINAL_RATE_RTOL else float(fs)
 
 
 def _check_nyquist(params: dict[str, float], fs: float) -> None:
-    """fc above the Nyquist frequency would take the band into the spectrum's mirror image."""
-    if np.isfinite(fs) and params["fc"] > fs / 2:
+    """fc at or above the Nyquist frequency would take the band into the spectrum's mirror image: SPARC's
+    band must end below the Nyquist frequency of the nominal rate (and of the estimated one, when lower), so
+    that stamps that put the rate a little off (59.98 Hz for 60 Hz) never make a computation fail later."""
+    if not np.isfinite(fs):
+        return
+    nominal = nominal_rate(fs)
+    nyquist = min(fs, nominal) / 2
+    if params["fc"] >= nyquist:
+        rate = f"{nominal:g} Hz" if nominal == fs else f"{nominal:g} Hz nominal, {fs:.6g} Hz from the time stamps"
         raise OptionError(
-            f"fc = {params['fc']:g} Hz lies above the Nyquist frequency {fs / 2:g} Hz of these "
-            f"recordings (sampled at {fs:g} Hz); choose fc <= {fs / 2:g} Hz"
+            f"fc = {params['fc']:g} Hz is at or above the Nyquist frequency {nyquist:.6g} Hz of these "
+            f"recordings (sampled at {rate}); choose fc below {nyquist:.6g} Hz"
         )
 
 
@@ -236,7 +284,7 @@ def run(
     in rad/s (one for all joints or one per joint; default: the robot's); ``qdd_max`` (rad/s^2) and
     ``tau_max`` (N m): joint acceleration and torque limits, likewise (default: the robot's,
     :func:`skilllib.robot.dynamic_limits`); ``scaling``: "raw" (the paper) or "standard"; ``random_state``:
-    K-means' seed (0 .. 2**32 - 1); ``fc`` (Hz, at most the Nyquist frequency
+    K-means' seed (0 .. 2**32 - 1); ``fc`` (Hz, below the Nyquist frequency
     of the recordings), ``amp_th`` and ``padlevel``: the SPARC parameters (:func:`skilllib.smoothness.sparc`;
     default the book's, fc = 20 Hz); ``sensitivity``: other SPARC settings (dicts of some of fc, amp_th,
     padlevel; the rest as this run's) to compare with this run's
@@ -278,7 +326,7 @@ def run(
     random_state : int
         K-means' seed, 0 .. 2**32 - 1 (dimensionless).
     fc : float
-        SPARC's maximum cut-off frequency, at most the recordings' Nyquist frequency (Hz).
+        SPARC's maximum cut-off frequency, below the recordings' Nyquist frequency (Hz).
     amp_th : float
         SPARC's amplitude threshold, a fraction of the peak magnitude (dimensionless).
     padlevel : int
@@ -420,6 +468,10 @@ def compute(
         **trials_block(features),
         "n_selected": len(selected),
     }
+    skipped = getattr(recordings, "skipped", None)
+    if skipped is not None:  # a folder of trial files: each file is one trial (read or invalid) or skipped
+        results["dataset"]["n_files"] = len(features) + len(skipped)
+        results["dataset"]["skipped_files"] = [{"path": q.path, "reason": q.reason} for q in skipped]
     result = PipelineRun(results=results, recordings=recordings, features=features)
     if not np.isfinite(recordings.fs):
         result.messages.append("the sampling rate is unknown: no trial is usable to derive it from the time stamps")
@@ -508,6 +560,9 @@ def compute(
             result.transfers.append(transfer(arm, seg, cluster=c))
         result.assessments = assess(arm.robot, result.transfers, arm.dynamic_limits, sparc_params=params)
         results["transfer"] = transfer_block(result.assessments)
+        result.messages += [  # an execution not simulated (a time scale beyond MAX_TIME_SCALE, ...) and why
+            f"prototype of cluster {a.transfer.cluster}: {a.note}" for a in result.assessments if a.note
+        ]
     if variants and sweep is not None:
         result.sensitivity = sparc_sensitivity(
             recordings,

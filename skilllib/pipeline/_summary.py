@@ -37,7 +37,7 @@ def summary_lines(run_: PipelineRun) -> list[str]:
     counts = f["status"].value_counts()
     fs = run_.recordings.fs
     rate = f"at {fs:.4g} Hz (from the time stamps)" if np.isfinite(fs) else "at an unknown sampling rate"
-    lines = [
+    lines = _files_lines(run_.results["dataset"]) + [
         f"trials read: {len(f)} from {run_.results['dataset']['n_participants']} participant(s) {rate}",
         (
             f"selected: {counts.get('selected', 0)}, excluded: {counts.get('excluded', 0)}, "
@@ -96,6 +96,24 @@ def summary_lines(run_: PipelineRun) -> list[str]:
                 f"with this run's k = {sens.k} partition; {int(c['prototypes kept'])} of {sens.k} prototypes kept"
             )
     lines += [f"note: {m}" for m in run_.messages]
+    return lines
+
+
+#: The most skipped files of a folder the summary lists (all of them are in results.json).
+MAX_SKIPPED_LINES = 10
+
+
+def _files_lines(dataset: dict) -> list[str]:
+    """For a folder input: how many files it holds, read and skipped, and the skipped ones with their reason
+    (at most :data:`MAX_SKIPPED_LINES`); nothing for other inputs."""
+    if "n_files" not in dataset:
+        return []
+    skipped = dataset["skipped_files"]
+    n_read = dataset["n_files"] - len(skipped)
+    lines = [f"files found: {dataset['n_files']}, trials read: {n_read}, files skipped: {len(skipped)}"]
+    lines += [f"  skipped {q['path']}: {q['reason']}" for q in skipped[:MAX_SKIPPED_LINES]]
+    if len(skipped) > MAX_SKIPPED_LINES:
+        lines.append(f"  and {len(skipped) - MAX_SKIPPED_LINES} more (results.json dataset.skipped_files)")
     return lines
 
 

@@ -36,7 +36,7 @@ __getattr__, __dir__, __all__ = _lazy.attach(
             "stale_leading",
         ],
         "_errors": ["DataFormatError", "MAX_QUOTE", "quote"],
-        "_folder": ["FileProblem", "read_folder"],
+        "_folder": ["FileProblem", "read_folder", "SkippedFile"],
         "_load": ["load_recordings", "read_any", "read_csv_table", "single_file_ids"],
         "_mapping": [
             "contact_from_height",

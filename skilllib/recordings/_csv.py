@@ -207,12 +207,15 @@ def _last_cells_empty(text: str, rows: np.ndarray, sep: str = ",") -> bool:
     return all(lines[i].rstrip("\r\n ").endswith(sep) for i in rows)
 
 
-def check_alignment(path: Path, text: str, sep: str = ",") -> None:
+def check_alignment(path: Path, text: str, sep: str = ",") -> str:
     """DataFormatError unless every record of the CSV ``text`` has as many fields as its header (blank
     lines aside); the message names the first other line, both counts, and the fix of a trailing comma
-    on the data rows only or on the header only. A trailing comma on every line, the header's included,
-    lines up (pandas names that empty column ``Unnamed: k``; it is not one the recordings use). Fields
-    are split at ``sep`` (``","``, ``"\\t"`` or ``";"``); a message about another separator says so."""
+    on the header only. A trailing comma on every line, the header's included, lines up (pandas names
+    that empty column ``Unnamed: k``; it is not one the recordings use). When every data row has one field
+    more than the header and that field is empty on every row (a separator at the end of each data row,
+    as some exporters write), the rows line up once it is dropped: the note returned says so, and the
+    caller drops it (:func:`drop_trailing_separators`). Fields are split at ``sep`` (``","``, ``"\\t"`` or
+    ``";"``); a message about another separator says so. Returns the note ('' when the rows line up)."""
     widths, lines, header = _record_widths(text, sep)
     if len(widths) < 2 or widths[0] == 0:  # a header alone, or blank lines before it: read_csv says so
         return
@@ -220,22 +223,44 @@ def check_alignment(path: Path, text: str, sep: str = ",") -> None:
     rows = np.flatnonzero(widths[1:] > 0) + 1
     bad = rows[widths[rows] != h]
     if not len(bad):
-        return
+        return ""
     first, w = int(bad[0]), int(widths[bad[0]])
     # pandas' own words for a row too long (kept: the message users and tests know), for short rows too
     how = "" if sep == "," else f" ({split_words(sep)})"
     where = f"{path}: not a valid CSV table: Expected {h} fields in line {lines[first]}, saw {w}{how}"
     mark = {",": "comma", "\t": "tab", ";": "semicolon"}.get(sep, "separator")
     if len(bad) == len(rows) and np.all(widths[rows] == h + 1) and _last_cells_empty(text, rows, sep):
-        raise DataFormatError(
-            f"{where}: every data row ends with a separator the header lacks, which would shift the columns: "
-            f"remove the trailing {mark} from the data rows (or add one to the header)"
-        )
+        return f"every data row ends with a {mark} the header lacks: the empty last field is ignored"
     if len(bad) == len(rows) and np.all(widths[rows] == h - 1) and not header[-1].strip():
         raise DataFormatError(
             f"{where}: the header ends with a separator the data rows lack: remove the trailing {mark} from line 1"
         )
     raise DataFormatError(where)
+
+
+def drop_trailing_separators(text: str, sep: str) -> str:
+    """``text`` without the one separator at the end of each line after the header that ends with one
+    (:func:`check_alignment` found that every data row has such an empty last field). Line numbers are
+    unchanged.
+
+    Parameters
+    ----------
+    text : str
+        The file's text.
+    sep : str
+        The separator (text).
+
+    Returns
+    -------
+    str
+        The text with the data rows' trailing separator removed.
+    """
+    head, _, body = text.partition("\n")
+    out = [
+        ln[: -len(sep)] if ln.rstrip("\r").endswith(sep) and not ln.endswith("\r") else ln for ln in body.split("\n")
+    ]
+    out = [ln[: -len(sep) - 1] + "\r" if ln.endswith(sep + "\r") else ln for ln in out]
+    return head + "\n" + "\n".join(out)
 
 
 def read_table(path: str | Path, sep: str | None = None) -> tuple[pd.DataFrame, np.ndarray]:
@@ -269,7 +294,9 @@ def read_table(path: str | Path, sep: str | None = None) -> tuple[pd.DataFrame, 
     if not text.strip():
         raise DataFormatError(f"{path}: file is empty")
     sep = parse_sep(sep) or detect_sep(text)
-    check_alignment(path, text, sep)
+    note = check_alignment(path, text, sep)
+    if note:
+        text = drop_trailing_separators(text, sep)
     try:
         df = pd.read_csv(
             io.StringIO(text),
@@ -294,6 +321,7 @@ def read_table(path: str | Path, sep: str | None = None) -> tuple[pd.DataFrame, 
         ) from None
     lines = record_lines(text)[: len(df)]
     df.attrs["sep"] = sep
+    df.attrs["notes"] = [f"{path}: {note}"] if note else []
     return df, lines
 
 

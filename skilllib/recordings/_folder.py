@@ -15,19 +15,25 @@ export, read like a C3D file (:func:`skilllib.recordings.read_nexus`); any other
   matched against the whole stem of every file (``re.fullmatch``); its ``participant`` group, when it
   has one, replaces the sub-folder's name; a file directly in ``DIR`` needs it.
 
-Only ``DIR`` and its direct sub-folders are read; hidden files and folders (``.name``) are skipped; a
-file deeper down is reported, not read. Trials come in a fixed order: participants, then trials, in
-natural order (``P2`` before ``P10``; ids equal as numbers, like ``01`` and ``1``, by their text).
+Only ``DIR`` and its direct sub-folders are read (a sub-folder that is a link is followed). Trials come in
+a fixed order: participants, then trials, in natural order (``P2`` before ``P10``; ids equal as numbers,
+like ``01`` and ``1``, by their text).
 
-**Files that cannot be read** never stop the others: :func:`read_folder` returns them as
-:class:`FileProblem` (file, participant, trial, reason; participant and trial None when the name does
-not give them) for the caller to list as invalid trials. It raises only when the options are wrong or
-no file at all can be read.
+**Every file is accounted for**: it is a trial, an unreadable file or a skipped one, never dropped
+without a word. Files that cannot be read never stop the others: :func:`read_folder` returns them as
+:class:`FileProblem` (file, participant, trial, reason) for the caller to list as invalid trials (a file
+that cannot be opened, a damaged or empty one, a second file for the same ids). What is not read at all
+is a :class:`SkippedFile` (path, reason) in the frame's ``attrs["skipped"]``: hidden files and folders
+(``.name``, such as macOS's ``._name.c3d``), a sub-folder that cannot be listed, a broken link, a file
+in a sub-sub-folder, a file of another format, a name that gives no ids (not matching ``name_pattern``,
+or without ``_`` directly in ``DIR``), something that is not a regular file. :func:`read_folder` raises
+only when the options are wrong, the folder cannot be listed, or no file at all can be read.
 """
 
 from __future__ import annotations
 
 import io
+import os
 import re
 from collections.abc import Mapping
 from pathlib import Path
@@ -38,7 +44,7 @@ import pandas as pd
 
 from ._c3d import read_c3d
 from ._columns import ID_COLUMNS
-from ._csv import _read_text, check_alignment, columns_found, detect_sep, parse_sep
+from ._csv import _read_text, check_alignment, columns_found, detect_sep, drop_trailing_separators, parse_sep
 from ._errors import DataFormatError
 from ._mapping import map_frame, rename_columns, time_unit_factor, unit_factor, up_axis_rotation
 from ._nexus import is_nexus, read_nexus
@@ -70,6 +76,28 @@ class FileProblem(NamedTuple):
     participant: str | None
     trial: str | None
     reason: str
+
+
+class SkippedFile(NamedTuple):
+    """An entry of a folder that is not read at all, and why: ``reason`` is one line.
+
+    Parameters
+    ----------
+    path : str
+        The file, relative to the folder read, ``/`` between its parts; a folder skipped whole ends with
+        ``/`` (text).
+    reason : str
+        Why it is not read, one line (text): ``"hidden file"``, ``"hidden folder"``, ``"cannot list the
+        folder: Permission denied"``, ``"broken link to ..."``, ``"in a sub-sub-folder: ..."``, ``"not a
+        C3D, TRC, Nexus or CSV file"``, a name that gives no ids, ...
+    """
+
+    path: str
+    reason: str
+
+
+#: The reason of a file of a folder whose format no reader takes.
+OTHER_FORMAT = "not a C3D, TRC, Nexus or CSV file"
 
 
 def file_kind(path: Path) -> str | None:
@@ -142,7 +170,8 @@ def read_trial_csv(path: Path, *, columns: Mapping[str, str] | None = None, sep:
     if not text.strip():
         raise DataFormatError(f"{path}: file is empty")
     sep = parse_sep(sep) or detect_sep(text)
-    check_alignment(path, text, sep)
+    if note := check_alignment(path, text, sep):
+        text = drop_trailing_separators(text, sep)
     try:
         df = pd.read_csv(io.StringIO(text), sep=sep, skipinitialspace=True)
     except (pd.errors.ParserError, pd.errors.EmptyDataError, ValueError) as e:
@@ -150,6 +179,7 @@ def read_trial_csv(path: Path, *, columns: Mapping[str, str] | None = None, sep:
         raise DataFormatError(f"{path}: not a readable CSV table ({msg[:200]})") from None
     df = df.rename(columns=lambda c: str(c).strip())
     df.attrs["sep"] = sep
+    df.attrs["notes"] = [note] if note else []
     ids = [c for c in df.columns if (columns or {}).get(c, c) in ID_COLUMNS]
     if ids:
         raise DataFormatError(
@@ -254,20 +284,70 @@ def _reason(e: Exception, path: Path) -> str:
     return msg[len(head) :].lstrip(":, ") if msg.startswith(head) else msg
 
 
-def _scan(root: Path) -> tuple[list[tuple[Path, str | None]], list[Path]]:
-    """Readable-looking files as (path, sub-folder name or None), and files deeper than one sub-folder."""
-    found, deep = [], []
-    for p in sorted(root.rglob("*")):
-        rel = p.relative_to(root)
-        if any(part.startswith(".") for part in rel.parts) or not p.is_file() or file_kind(p) is None:
-            continue
-        if len(rel.parts) == 1:
-            found.append((p, None))
-        elif len(rel.parts) == 2:
-            found.append((p, rel.parts[0]))
-        else:
-            deep.append(p)
-    return found, deep
+def _listing(folder: Path) -> list[os.DirEntry]:
+    """The entries of ``folder`` sorted by name; OSError when it cannot be listed."""
+    with os.scandir(folder) as it:
+        return sorted(it, key=lambda e: e.name)
+
+
+def _is_dir(entry: os.DirEntry) -> bool:
+    """Whether the entry is a folder (a link to one too); False when that cannot be told."""
+    try:
+        return entry.is_dir()
+    except OSError:
+        return False
+
+
+def _scan(root: Path) -> tuple[list[tuple[Path, str | None]], list[SkippedFile]]:
+    """Every entry under ``root``, accounted for: the files to read as (path, sub-folder name or None), in
+    order of their paths, and the entries skipped with their reason (:class:`SkippedFile`). ``root``'s
+    direct sub-folders are participants (a link to a folder is followed there, not deeper); a file
+    deeper down is skipped, each one named. OSError when ``root`` itself cannot be listed."""
+    found: list[tuple[Path, str | None]] = []
+    skipped: list[SkippedFile] = []
+
+    def visit(folder: Path, parts: tuple[str, ...], entries: list[os.DirEntry]) -> None:
+        for e in entries:
+            rel = "/".join((*parts, e.name))
+            is_dir = _is_dir(e)
+            if e.name.startswith("."):
+                skipped.append(SkippedFile(rel + "/", "hidden folder") if is_dir else SkippedFile(rel, "hidden file"))
+            elif e.is_symlink() and not os.path.exists(e.path):
+                try:
+                    target = os.readlink(e.path)
+                except OSError:
+                    target = "a missing file"
+                skipped.append(SkippedFile(rel, f"broken link to {target}"))
+            elif is_dir and parts and e.is_symlink():  # below a participant's folder: a link could loop
+                skipped.append(
+                    SkippedFile(
+                        rel + "/", f"link to a folder inside a sub-folder: only {root}/<participant>/<file> is read"
+                    )
+                )
+            elif is_dir:
+                try:
+                    inner = _listing(Path(e.path))
+                except OSError as err:
+                    skipped.append(SkippedFile(rel + "/", f"cannot list the folder: {err.strerror or err}"))
+                    continue
+                visit(Path(e.path), (*parts, e.name), inner)
+            elif not e.is_file():
+                skipped.append(SkippedFile(rel, "not a regular file (a device, pipe or socket)"))
+            elif len(parts) > 1:
+                skipped.append(SkippedFile(rel, f"in a sub-sub-folder: only {root}/<participant>/<file> is read"))
+            elif file_kind(Path(e.path)) is None:
+                skipped.append(SkippedFile(rel, OTHER_FORMAT))
+            else:
+                found.append((Path(e.path), parts[0] if parts else None))
+
+    visit(root, (), _listing(root))
+    return found, skipped
+
+
+def _check_readable(path: Path) -> None:
+    """OSError (Permission denied, ...) when the file cannot be opened for reading."""
+    with path.open("rb"):
+        pass
 
 
 def read_folder(
@@ -285,14 +365,18 @@ def read_folder(
     time_unit: str | None = None,
 ) -> tuple[pd.DataFrame, list[FileProblem]]:
     """Every ``.c3d``, ``.trc`` and ``.csv`` (also compressed; Vicon Nexus exports among them) file of
-    ``path`` as one trial each.
+    ``path`` as one trial each, and every other entry accounted for.
 
     Returns ``(frame, problems)``: ``frame`` is the long table ``participant, trial, t, x, y, z,
     contact`` and ``file``, ``sample`` (the file, relative to ``path``, and the 1-based sample in it) (ids as
     ``str``; s; m in the book's frame; 0/1, or NaN where a file's own flag is empty),
     trials in the natural order of the module docstring, each file's rows contiguous; ``problems`` lists
-    the files that could not be read (:class:`FileProblem`), in the same order (those whose names give
-    no ids first), for the caller to mark those trials invalid. The options are those of
+    the files that could not be read (:class:`FileProblem`: cannot be opened, damaged, no samples, a
+    second file for the same ids), in the same order, for the caller to mark those trials invalid. The
+    entries not read at all (hidden, unlistable sub-folders, broken links, too deep, another format, a
+    name that gives no ids) are the frame's ``attrs["skipped"]``, a list of :class:`SkippedFile` in order
+    of their paths (module docstring): every entry of the folder is a trial, a problem or skipped. The
+    options are those of
     :func:`read_trial_file`; the naming rule (sub-folder or ``PARTICIPANT_TRIAL`` name, or
     ``name_pattern``) is in the module docstring. Two files giving one (participant, trial) are a
     problem for the second. The frame's ``attrs["units"]`` is the unit stated for every file read (the
@@ -340,8 +424,8 @@ def read_folder(
     Raises
     ------
     DataFormatError
-        When ``path`` is not a folder, an option is wrong (unit, axis, pattern), the folder has no such
-        file, or none of its files can be read.
+        When ``path`` is not a folder or cannot be listed, an option is wrong (unit, axis, pattern), the
+        folder has no such file, or none of its files can be read.
     """
     root = Path(path)
     if not root.is_dir():
@@ -354,9 +438,13 @@ def read_folder(
     if time_unit is not None:
         time_unit_factor(time_unit, str(root))
     parse_sep(sep)
-    found, deep = _scan(root)
-    if not found and not deep:
-        raise DataFormatError(f"{root}: no .c3d, .trc or .csv files in the folder or its sub-folders")
+    try:
+        found, skipped = _scan(root)
+    except OSError as e:
+        raise DataFormatError(f"{root}: cannot list the folder: {e.strerror or e}") from None
+    if not found:
+        first = f" ({len(skipped)} skipped; first: {skipped[0].path}: {skipped[0].reason})" if skipped else ""
+        raise DataFormatError(f"{root}: no .c3d, .trc or .csv files in the folder or its sub-folders{first}")
     opts = dict(
         marker=marker,
         contact_channel=contact_channel,
@@ -368,15 +456,12 @@ def read_folder(
         sep=sep,
         time_unit=time_unit,
     )
-    named, problems = [], []
+    named, problems, unnamed = [], [], []
     for p, folder in found:
         try:
             named.append((*trial_ids(file_stem(p), folder, pattern), p))
-        except ValueError as e:
-            problems.append(FileProblem(str(p), None, None, str(e)))
-    problems += [
-        FileProblem(str(p), None, None, f"in a sub-sub-folder: only {root}/<participant>/<file> is read") for p in deep
-    ]
+        except ValueError as e:  # no ids: not a trial
+            unnamed.append(SkippedFile(p.relative_to(root).as_posix(), str(e)))
     named.sort(key=lambda r: (natural_key(r[0]), natural_key(r[1]), str(r[2])))
     frames, seen, stated, notes = [], {}, set(), []
     for participant, trial, p in named:
@@ -392,9 +477,16 @@ def read_folder(
             continue
         seen[participant, trial] = p
         try:
+            _check_readable(p)
             df = read_trial_file(p, **opts)
         except DataFormatError as e:
             problems.append(FileProblem(str(p), participant, trial, _reason(e, p)))
+            continue
+        except OSError as e:  # Permission denied, an I/O error: that file, not the run
+            problems.append(FileProblem(str(p), participant, trial, f"cannot be read: {e.strerror or e}"))
+            continue
+        if not len(df):
+            problems.append(FileProblem(str(p), participant, trial, "no samples"))
             continue
         stated.add(df.attrs.get("units"))
         notes += [f"{p.relative_to(root)}: {note}" for note in df.attrs.get("notes", [])]
@@ -405,9 +497,9 @@ def read_folder(
         df["sample"] = np.arange(1, len(df) + 1)
         frames.append(df)
     if not frames:
-        first = problems[0]
+        first = [(q.path, q.reason) for q in problems] + [(str(root / q.path), q.reason) for q in unnamed]
         raise DataFormatError(
-            f"{root}: none of the {len(found) + len(deep)} files could be read (first: {first.path}: {first.reason})"
+            f"{root}: none of the {len(found)} files could be read (first: {first[0][0]}: {first[0][1]})"
         )
     problems.sort(key=lambda q: (natural_key(q.participant or ""), natural_key(q.trial or ""), q.path))
     frame = pd.concat(frames, ignore_index=True)
@@ -415,4 +507,5 @@ def read_folder(
     frame["trial"] = frame["trial"].astype(object)
     frame.attrs["units"] = None if None in stated else stated.pop() if len(stated) == 1 else "mixed"
     frame.attrs["notes"] = notes
+    frame.attrs["skipped"] = sorted(skipped + unnamed, key=lambda q: natural_key(q.path))
     return frame, problems

@@ -49,11 +49,21 @@ import pandas as pd
 
 from ._c3d import read_c3d
 from ._columns import COLUMNS, ID_COLUMNS, POSITION_COLUMNS
-from ._csv import _read_text, check_alignment, detect_sep, file_stem_any, parse_sep, read_table, with_file_ids
+from ._csv import (
+    _read_text,
+    check_alignment,
+    detect_sep,
+    drop_trailing_separators,
+    file_stem_any,
+    parse_sep,
+    read_table,
+    with_file_ids,
+)
 from ._defects import MAX_GAP_S
 from ._errors import DataFormatError, check_file, quote
 from ._folder import (
     FileProblem,
+    SkippedFile,
     compile_pattern,
     file_kind,
     read_folder,
@@ -69,7 +79,7 @@ from ._mapping import (
     rename_columns,
     up_axis_rotation,
 )
-from ._parquet import is_parquet
+from ._parquet import is_parquet, read_parquet, with_skipped
 from ._recordings import NA_TEXT, Recordings, read_recordings, recordings_from_frame
 from ._trc import read_trc
 
@@ -154,7 +164,9 @@ def read_csv_table(
         if not text.strip():
             raise pd.errors.EmptyDataError("empty")
         sep = parse_sep(sep) or detect_sep(text)
-        check_alignment(path, text, sep)
+        note = check_alignment(path, text, sep)
+        if note:
+            text = drop_trailing_separators(text, sep)
         names = [str(c) for c in pd.read_csv(io.StringIO(text), sep=sep, nrows=0, **opts).columns]
         ids = [c for c in names if (columns or {}).get(c.strip(), c.strip()) in ID_COLUMNS]
         df = pd.read_csv(
@@ -183,6 +195,7 @@ def read_csv_table(
             col[blank] = np.nan
             df[c] = col
     df.attrs["sep"] = sep
+    df.attrs["notes"] = [f"{path}: {note}"] if note else []
     return df
 
 
@@ -350,6 +363,34 @@ def _one_recording(table: pd.DataFrame, path: Path, name_pattern: str | re.Patte
     return out
 
 
+def _mapped_parquet(
+    path: Path,
+    opts: dict,
+    known: bool,
+    repair: dict,
+    *refused: object,
+) -> Recordings:
+    """A Parquet file or dataset read with the mapping options (``columns``, ``units``, ``up_axis``,
+    ``contact_height``, ``time_unit``); the options of other formats (marker, contact channel and threshold,
+    name pattern, separator) are refused naming the first given."""
+    from ._recordings import natural_key
+
+    flags = ("--marker", "--contact-channel", "--contact-threshold", "--name-pattern", "--sep")
+    given = [flag for flag, v in zip(flags, refused) if v is not None]
+    if given:
+        raise DataFormatError(
+            f"{path}: {given[0]} does not apply to Parquet input, which is read in the book's format "
+            f"(--columns, --units, --up-axis, --contact-height and --time-unit apply; docs/inputs.md, Parquet)"
+        )
+    optional = ("contact",) if opts["contact_height"] is not None else ()
+    frame, where = read_parquet(path, COLUMNS, natural_key, renames=opts["columns"], optional=optional)
+    skipped = frame.attrs.get("skipped", ())
+    mapped = map_frame(frame, **{k: v for k, v in opts.items() if k != "columns"}, source=str(path))
+    del frame
+    rec = recordings_from_frame(mapped, str(path), place=where, units_known=known, **repair)
+    return with_skipped(rec, skipped)
+
+
 def _numeric_text(df: pd.DataFrame, lines: np.ndarray, source: str) -> pd.DataFrame:
     """The t, x, y, z and contact columns of a text table (:func:`skilllib.recordings.read_table`) as numbers,
     :data:`skilllib.recordings.NA_TEXT` as NaN; a cell that is not a number raises naming its physical line.
@@ -459,7 +500,9 @@ def load_recordings(
         if isinstance(data, pd.DataFrame):
             return recordings_from_frame(data, **repair)
         path = Path(data)
-        if is_parquet(path) or not path.is_dir() and file_kind(path) not in ("c3d", "trc", "nexus"):
+        parquet = is_parquet(path)  # with --sep: refused below (a CSV option)
+        csv_file = not parquet and not path.is_dir() and file_kind(path) not in ("c3d", "trc", "nexus")
+        if parquet and sep is None or csv_file:
             return read_recordings(path, sep=sep, **repair)  # pyarrow's CSV reader; Parquet files, folders
     opts = dict(
         columns=parse_columns(columns) if isinstance(columns, str) else columns,
@@ -474,6 +517,8 @@ def load_recordings(
     if isinstance(data, pd.DataFrame):
         return recordings_from_frame(map_frame(data, **opts), "<DataFrame>", units_known=known, **repair)
     path = Path(data)
+    if is_parquet(path):  # the book's columns: --columns, --units, --up-axis, --contact-height, --time-unit apply
+        return _mapped_parquet(path, opts, known, repair, marker, contact_channel, contact_threshold, name_pattern, sep)
     kind = None if path.is_dir() else file_kind(path)
     if not path.is_dir() and kind not in ("c3d", "trc", "nexus"):  # a CSV table, perhaps compressed
         table, lines = read_table(path, sep)
@@ -489,7 +534,9 @@ def load_recordings(
             source=str(path),
             time_unit=time_unit,
         )
-        return recordings_from_frame(mapped, str(path), lines=lines, units_known=known, **repair)
+        rec = recordings_from_frame(mapped, str(path), lines=lines, units_known=known, **repair)
+        notes = tuple(table.attrs.get("notes", ()))
+        return dataclasses.replace(rec, notes=notes) if notes else rec
     frame, problems = read_any(
         path,
         marker=marker,
@@ -506,12 +553,15 @@ def load_recordings(
     elif kind is not None:
         places = np.array([f"sample {i + 1}" for i in range(len(frame))], dtype=object)
     rec = recordings_from_frame(frame[list(COLUMNS)], str(path), places=places, units_known=known, **repair)
-    notes = tuple(frame.attrs.get("notes", ()))
-    return _with_problems(dataclasses.replace(rec, notes=notes) if notes else rec, problems, path)
+    extra = {"notes": tuple(frame.attrs.get("notes", ()))}
+    if "skipped" in frame.attrs:  # a folder: what it holds besides its trials
+        extra["skipped"] = tuple(frame.attrs["skipped"])
+    return _with_problems(dataclasses.replace(rec, **extra), problems, path)
 
 
 def _with_problems(rec: Recordings, problems: list[FileProblem], root: Path) -> Recordings:
-    """``rec`` with one ``invalid`` trial per unreadable file (reason: the file and its problem)."""
+    """``rec`` with one ``invalid`` trial per unreadable file (reason: the file and its problem); its
+    ``notes`` and ``skipped`` kept."""
     if not problems:
         return rec
     rows, extra = [], {}
@@ -545,6 +595,7 @@ def _with_problems(rec: Recordings, problems: list[FileProblem], root: Path) -> 
         _resampled=rec._resampled,
         _repaired=rec._repaired,
         notes=rec.notes,
+        skipped=rec.skipped,
     )
 
 
@@ -562,6 +613,7 @@ __all__ = [
     "contact_from_height",
     "up_axis_rotation",
     "FileProblem",
+    "SkippedFile",
     "UNIT_FACTORS",
     "UP_AXIS_ROTATIONS",
     "DataFormatError",

@@ -39,7 +39,7 @@ from __future__ import annotations
 import io
 import re
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -56,7 +56,7 @@ from ._checks import (
 from ._columns import COLUMNS, ID_COLUMNS, POSITION_COLUMNS
 from ._csv import SEPARATORS, read_plain, read_table, split_words, with_file_ids
 from ._errors import DataFormatError, quote
-from ._parquet import is_parquet, read_parquet, release_arrow_memory
+from ._parquet import is_parquet, read_parquet, release_arrow_memory, with_skipped
 from ._runs import Runs
 
 T_DECIMALS, POS_DECIMALS = 4, 5  #: writer's rounding: 0.1 ms and 0.01 mm
@@ -110,6 +110,10 @@ class Recordings:
     notes : tuple of str
         What the readers noticed in the files but did not refuse (a TRC header announcing more frames than
         the file holds, C3D frame counts that disagree, ...), each naming its file (text).
+    skipped : tuple of SkippedFile or None
+        For a folder of trial files (:func:`skilllib.recordings.read_folder`), the entries it holds that are
+        not read at all, each with its reason (hidden, a broken link, another format, ...; text); None for
+        any other input.
     """
 
     frame: pd.DataFrame
@@ -121,6 +125,7 @@ class Recordings:
     _repaired: dict = field(repr=False, default_factory=dict)  # key -> bool mask of the repaired samples
     _cache: dict = field(repr=False, default_factory=dict, compare=False)
     notes: tuple = ()
+    skipped: tuple | None = None
 
     def trial(self, participant: Any, trial: Any) -> Trial:
         """The samples of one trial (whatever its status; resampled when its timing says so); KeyError if
@@ -627,9 +632,10 @@ def read_recordings(
     if is_parquet(path):
         frame, where = read_parquet(path, COLUMNS, natural_key)
         rec = recordings_from_frame(frame, str(path), place=where, max_gap_s=max_gap_s, fill=fill)
+        skipped = frame.attrs.get("skipped", ())  # a dataset's stray, hidden, metadata files: said
         del frame
         release_arrow_memory()
-        return rec
+        return with_skipped(rec, skipped)
     fast = read_plain(path, ID_COLUMNS, ("t", *POSITION_COLUMNS, "contact"), NA_TEXT, sep=sep)
     if fast is not None:  # a plain file: pyarrow's reader; record k is line k + 2
         rec = recordings_from_frame(fast, str(path), lines=range(2, len(fast) + 2), max_gap_s=max_gap_s, fill=fill)
@@ -637,7 +643,9 @@ def read_recordings(
         release_arrow_memory()
         return rec
     df, lines = read_table(path, sep)
-    return recordings_from_frame(with_file_ids(df, path), str(path), lines=lines, max_gap_s=max_gap_s, fill=fill)
+    rec = recordings_from_frame(with_file_ids(df, path), str(path), lines=lines, max_gap_s=max_gap_s, fill=fill)
+    notes = tuple(df.attrs.get("notes", ()))
+    return replace(rec, notes=notes) if notes else rec
 
 
 def _fmt(values: np.ndarray, decimals: int) -> list[str]:

@@ -38,7 +38,7 @@ __getattr__, __dir__, __all__ = _lazy.attach(
             "LIMIT_NAMES",
         ],
         "_execution": ["ACTUATOR_BANDWIDTH_HZ", "CONTROL_RATE_HZ", "execute"],
-        "_feasibility": ["assess", "assess_one", "Assessment", "limits_text", "transfer_block"],
+        "_feasibility": ["assess", "assess_one", "Assessment", "limits_text", "MAX_TIME_SCALE", "transfer_block"],
         "_ik": ["IK_CHAIN", "IK_RESTARTS", "IKAnswer", "pose_residual", "solve_ik"],
         "_reach": ["joint_axes", "reach_shell", "REACH_TOL_M", "shoulder_point"],
         "_velocity": [

@@ -26,8 +26,10 @@ profile have the same samples. PV is the largest of them; SPARC is
 :func:`skilllib.smoothness.sparc` with the run's parameters, at the samples' rate fs / s and with the cut-off
 scaled to fc / s when the command was slowed by s (a perfect execution of a slowed prototype then
 returns the prototype's SPARC exactly, and fc / s stays below the Nyquist frequency fs / (2 s) whenever fc
-stays below fs / 2). Torque limits are not simulated (no forward dynamics): the acceleration limits stand
-in for the drives' capacity.
+stays below fs / 2; the samples' rate is taken from their stamps, and fc / s is capped at its Nyquist
+frequency when stamps written imprecisely put it a little below fs / s). An arm that does not move at all
+(limits too low to leave the start) has no SPARC (NaN). Torque limits are not simulated (no forward
+dynamics): the acceleration limits stand in for the drives' capacity.
 """
 
 from __future__ import annotations
@@ -204,10 +206,11 @@ def execute(
     error = np.linalg.norm(x_k - result.x_base, axis=1)
     fs = (len(t_k) - 1) / t_k[-1] if len(t_k) > 1 else float("nan")
     params = dict(SPARC_PARAMS) | dict(sparc_params)
+    fc = min(params["fc"] / s, fs / 2)  # the samples' rate from imprecise stamps can fall just below fs / s
     value = (
-        sparc(speed_k, fs, fc=params["fc"] / s, amp_th=params["amp_th"], padlevel=params["padlevel"])
-        if len(t_k) > 1
-        else float("nan")
+        sparc(speed_k, fs, fc=fc, amp_th=params["amp_th"], padlevel=params["padlevel"])
+        if len(t_k) > 1 and np.any(speed_k > 0)
+        else float("nan")  # one sample, or an arm that did not move (limits too low to leave the start)
     )
     return Execution(
         t=t + result.t[0],

@@ -33,6 +33,13 @@ from ._dynamics import JointDynamics, joint_dynamics
 from ._execution import ACTUATOR_BANDWIDTH_HZ, CONTROL_RATE_HZ, Execution, execute
 from ._velocity import TransferResult, transfer_summary
 
+#: The largest time scale whose slowed execution is simulated (dimensionless). The simulation steps the
+#: controller at :data:`~skilllib.robot.CONTROL_RATE_HZ` over the whole slowed motion, so its time and
+#: memory grow with the time scale: a prototype of 1 s slowed by 1e6 (limits of 1e-6 rad/s) would be 5e8
+#: ticks, gigabytes. A stretch beyond 100 (a 1 s reach taking minutes) is no execution anyone would run;
+#: its value is still reported (``time_scale``), the slowed execution is not simulated (``note``).
+MAX_TIME_SCALE: float = 100.0
+
 
 @dataclass
 class Assessment:
@@ -128,7 +135,28 @@ def assess_one(
     s = dyn.time_scale
     if not np.isfinite(s):
         return Assessment(dyn, executed, None, "no time scale meets the torque limits: not executed slowed")
+    if s > MAX_TIME_SCALE:
+        return Assessment(dyn, executed, None, _too_slow_note(s))
     return Assessment(dyn, executed, executed if s == 1.0 else execute(robot, result, time_scale=s, **kw))
+
+
+def _too_slow_note(time_scale: float) -> str:
+    """Why the slowed execution of a time scale beyond :data:`MAX_TIME_SCALE` is not simulated.
+
+    Parameters
+    ----------
+    time_scale : float
+        The time scale every limit asks for (dimensionless).
+
+    Returns
+    -------
+    str
+        The note (text), naming the time scale, the bound and the controller ticks it would take.
+    """
+    return (
+        f"time scale {time_scale:.3g} beyond {MAX_TIME_SCALE:g} (limits so low that the arm barely moves): "
+        f"the slowed execution is not simulated"
+    )
 
 
 def assess(

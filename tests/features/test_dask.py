@@ -112,3 +112,32 @@ def test_noise_on_one_axis_is_seen_on_the_cluster(tmp_path, client):
     assert got.lowpass.noise_axes == pytest.approx(lp.noise_axes, rel=1e-12)
     assert lp.noise_axes[2] > 20 * max(lp.noise_axes[:2])
     pd.testing.assert_frame_equal(got.features, ref, check_exact=True)
+
+
+def test_partitions_of_different_id_types_and_stray_files_give_the_in_memory_table(tmp_path, cohort_frame, client):
+    """Issue 23: ids stored as int64, dictionary-encoded int32 and large text in the three partitions, an
+    AppleDouble file and a stray CSV beside them: the cluster's table equals the in-memory one bit for bit,
+    the ids are text, and both say the skipped files."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    p = cohort_frame["participant"].astype(str).to_numpy()
+    cuts = [0, int((p == "4").argmax()), int((p == "8").argmax()), len(p)]
+    folder = tmp_path / "mixed"
+    folder.mkdir()
+    stored = (lambda c: c.cast(pa.int64()), lambda c: c.cast(pa.int32()).dictionary_encode(), None)
+    for k, how in enumerate(stored):
+        part = cohort_frame.iloc[cuts[k] : cuts[k + 1]].astype({"participant": str, "trial": str})
+        t = pa.Table.from_pandas(part, preserve_index=False)
+        for c in ("participant", "trial"):
+            col = t.column(c).cast(pa.large_string()) if how is None else how(t.column(c))
+            t = t.set_column(t.schema.get_field_index(c), c, col)
+        pq.write_table(t, folder / f"part-{k}.parquet")
+    (folder / "._part-0.parquet").write_bytes(b"\x00\x05\x16\x07Mac OS X")
+    (folder / "stray.csv").write_text("t,x,y,z,contact\n0,0,0,0,0\n")
+    got = partitions.corpus_features(folder, client)
+    memory = read_recordings(folder)
+    ref = trial_features(memory)
+    pd.testing.assert_frame_equal(got.features, ref, check_exact=True)
+    pd.testing.assert_frame_equal(ref, trial_features(read_recordings(cohort_path())), check_exact=True)
+    assert got.notes == memory.notes and "stray.csv: skipped: not a Parquet file in a Parquet dataset" in got.notes

@@ -250,3 +250,23 @@ def test_the_command_writes_the_pages_and_lists_them(data, tmp_path):
     pages = sorted(n for n in figures if n.startswith("segmentation"))
     assert pages == ["segmentation-01.png", "segmentation-02.png"]
     assert all((out / n).stat().st_size > 0 for n in pages)
+
+
+def test_a_trial_with_a_gap_too_long_to_fill_is_drawn_around_the_gap():
+    """An invalid trial keeps its missing samples (a gap too long to fill): its panel shows the speed on
+    either side of the gap and nothing across it (catches velocity() refusing NaN, which stopped the run's
+    figures)."""
+    import skilllib as sk
+
+    c = sk.generate_cohort(9, sk.CohortModel(n_participants=1, n_trials=3))
+    df = c.frame.copy()
+    rows = df.index[df.trial == "2"]
+    df.loc[rows[5:40], "x"] = np.nan  # 0.58 s: not filled, invalid
+    rec = sk.load_recordings(df)
+    f = sk.trial_features(rec)
+    assert f.set_index("trial").loc["2", "status"] == "invalid"
+    fig = fg.plot_segmentation_pages(rec, f)[0]
+    panel = fig.axes[1]
+    speed = panel.lines[0].get_ydata()
+    assert np.isnan(speed[5:40]).all() and np.isfinite(speed[:4]).all() and np.isfinite(speed[41:]).any()
+    matplotlib.pyplot.close(fig)

@@ -377,10 +377,11 @@ def test_progress_wraps_each_stage_with_its_name():
     assert len(run_.transfers) == 2
 
 
-@pytest.mark.parametrize("fc, ok", [(FS / 2, True), (FS / 2 * (1 + 1e-9), False), (FS / 2.5, True)])
-def test_fc_up_to_the_nyquist_frequency_is_accepted(fc, ok):
-    """fc = fs / 2 is the largest accepted cut-off; just above it is an option error naming both.
-    Catches a bound of fs / 3 (rejects fc = fs / 2.5) or a strict comparison the other way."""
+@pytest.mark.parametrize("fc, ok", [(FS / 2 * (1 - 1e-9), True), (FS / 2, False), (FS / 2.5, True)])
+def test_fc_below_the_nyquist_frequency_is_accepted(fc, ok):
+    """fc just below fs / 2 is accepted; fc = fs / 2 is an option error naming both (issue 23: SPARC's
+    band must end below the Nyquist frequency). Catches a bound of fs / 3 (rejects fc = fs / 2.5) or a
+    comparison that lets fc = fs / 2 through."""
     params = {"fc": fc, "amp_th": 0.05, "padlevel": 4}
     if ok:
         pipeline._check_nyquist(params, FS)

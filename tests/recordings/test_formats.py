@@ -273,8 +273,9 @@ def test_folder_name_pattern(tmp_path):
         tmp_path, name_pattern=r"sub-(?P<participant>\w+)_run-(?P<trial>\d+)", contact_height=0.2
     )
     assert frame[["participant", "trial"]].iloc[0].tolist() == ["07", "2"]
-    assert [(Path(p.path).name, p.participant) for p in problems] == [("notes.trc", None)]
-    assert "does not match the name pattern" in problems[0].reason
+    assert problems == []  # a name without ids is no trial: skipped, with its reason (issue 23)
+    assert [q.path for q in frame.attrs["skipped"]] == ["notes.trc"]
+    assert "does not match the name pattern" in frame.attrs["skipped"][0].reason
     with pytest.raises(DataFormatError, match=r"has no \(\?P<trial>...\) group"):
         read_folder(tmp_path, name_pattern=r"(?P<participant>.*)")
 
@@ -294,9 +295,11 @@ def test_a_broken_file_is_reported_while_the_others_are_read(tmp_path):
     assert frame[["participant", "trial"]].drop_duplicates().values.tolist() == [["A", "1"], ["A", "4"]]
     assert all(isinstance(p, FileProblem) for p in problems)
     got = {(Path(p.path).name, p.participant, p.trial): p.reason for p in problems}
+    skipped = dict(frame.attrs["skipped"])  # no ids or too deep: not trials, skipped with a reason (issue 23)
+    assert list(skipped) == ["A/deep/5.trc", "nounderscore.trc"]
+    assert skipped["A/deep/5.trc"].startswith("in a sub-sub-folder")
+    assert "PARTICIPANT_TRIAL" in skipped["nounderscore.trc"]
     assert set(got) == {
-        ("nounderscore.trc", None, None),
-        ("5.trc", None, None),
         ("2.c3d", "A", "2"),
         ("3.c3d", "A", "3"),
         ("4.trc", "A", "4"),
@@ -304,7 +307,6 @@ def test_a_broken_file_is_reported_while_the_others_are_read(tmp_path):
     assert got["2.c3d", "A", "2"].startswith("not a readable C3D file")
     assert got["3.c3d", "A", "3"] == "2 markers (tip, wrist): choose one with --marker NAME"
     assert "also" in got["4.trc", "A", "4"] and "4.c3d" in got["4.trc", "A", "4"]
-    assert "PARTICIPANT_TRIAL" in got["nounderscore.trc", None, None]
 
 
 def test_folder_errors(tmp_path):
