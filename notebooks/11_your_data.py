@@ -328,18 +328,15 @@ kinesis = sk.load_recordings(
     contact_height=-1.0,  # m: no contact signal; a height never reached
 )
 kt = kinesis.trials
+repaired_by, invalid_by = kt["repairs"].str.contains, kt["reason"].str.contains
 repair_counts = pd.Series(
     {
         "trials": len(kt),
-        "with a stale first frame dropped": int(
-            kt["repairs"].str.contains("stale").sum()
-        ),
-        "with frozen samples replaced": int(kt["repairs"].str.contains("frozen").sum()),
-        "with a jump replaced": int(kt["repairs"].str.contains("jump").sum()),
+        "with a stale first frame dropped": int(repaired_by("stale").sum()),
+        "with frozen samples replaced": int(repaired_by("frozen").sum()),
+        "with a jump replaced": int(repaired_by("jump").sum()),
         "samples replaced by interpolation": int(kt["n_repaired"].sum()),
-        "invalid: frozen too long to fill": int(
-            kt["reason"].str.contains("frozen").sum()
-        ),
+        "invalid: frozen too long to fill": int(invalid_by("frozen").sum()),
     }
 )
 print(f"sampled at {kinesis.fs:.3g} Hz (from the time stamps)")
@@ -356,8 +353,8 @@ assert rc["with frozen samples replaced"] >= 10, "text: 'many trials have frozen
 assert rc["invalid: frozen too long to fill"] >= 5, "text: 'some ... too long to fill'"
 
 # %% [markdown]
-# Nearly every trial starts with a stale frame (about 50 mm from the next, left over from the
-# tracker's previous state), which would otherwise read as a movement already under way; many trials
+# Nearly every trial starts with a stale frame (far from the next, left over from the tracker's
+# previous state), which would otherwise read as a movement already under way; many trials
 # have frozen runs where the marker was occluded, and in some the freeze is too long to fill. This
 # task, too, is not the paper's: a reach to grasp ends at rest at the object, with no contact. The
 # pipeline reads it faithfully, says what it changed, and refuses only what it cannot repair honestly.
