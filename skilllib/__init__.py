@@ -122,6 +122,7 @@ __getattr__, __dir__, _names = _lazy.attach(
             "Repair",
             "repair_trial",
             "frozen_samples",
+            "gap_runs",
             "jump_samples",
             "stale_leading",
             "resample_uniform",

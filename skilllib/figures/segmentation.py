@@ -19,7 +19,7 @@ from matplotlib.patches import Patch
 from matplotlib.ticker import MaxNLocator
 
 from ..features import ONSET_SPEED, Lowpass, velocity
-from ..recordings import Recordings, natural_key
+from ..recordings import Recordings, gap_runs, natural_key
 from .experiment import _plabel
 
 #: Panels of a page: rows x columns (trials).
@@ -110,8 +110,7 @@ def _run_speed(pos: np.ndarray, fs: float) -> np.ndarray:
     trial can keep a gap too long to fill); NaN at the missing samples and in runs of fewer than 2."""
     out = np.full(len(pos), np.nan)
     have = np.isfinite(pos).all(axis=1) if len(pos) else np.zeros(0, dtype=bool)
-    edges = np.diff(np.concatenate([[0], have.astype(np.int8), [0]]))
-    for a, b in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)):
+    for a, b in gap_runs(have):
         if b - a >= 2:
             out[a:b] = np.linalg.norm(velocity(pos[a:b], fs), axis=1)
     return out

@@ -28,6 +28,7 @@ __getattr__, __dir__, __all__ = _lazy.attach(
         "_defects": [
             "FILL_METHODS",
             "frozen_samples",
+            "gap_runs",
             "jump_samples",
             "MAX_ACCELERATION",
             "MAX_GAP_S",

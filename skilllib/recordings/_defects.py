@@ -234,9 +234,8 @@ def frozen_samples(t: np.ndarray, pos: np.ndarray) -> np.ndarray:
     same[1:] = (pos[1:] == pos[:-1]).all(axis=1)
     if not same.any():
         return out
-    edges = np.diff(np.concatenate([[0], same.astype(np.int8), [0]]))
     have = np.flatnonzero(~np.isnan(pos).any(axis=1))
-    for s, e in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)):  # repeats s..e-1, run from s-1
+    for s, e in gap_runs(same):  # repeats s..e-1, run from s-1
         # the recorded samples either side of the run (or its first, at the start), skipping missing ones
         before, after = have[have <= s - 2], have[have >= e]
         i = int(before[-1]) if before.size else s - 1
