@@ -251,17 +251,22 @@ assert ((valid["status"] == "selected") == in_window).all(), (
 #
 # Everything above was synthetic. The repository also holds real recordings written by other labs'
 # software (`data/real/`, each with its source and licence in its README), and the readers are tested on
-# them. Four are **Vicon Nexus "Trajectories" CSV exports** of an open database of daily upper-limb
-# activities: healthy adults reach forward and touch a target sticker with the index fingertip, with
-# the left or the right hand (`L`, `R` in the name), recorded at 100 Hz in millimetres with z up. Nexus
+# them. 160 are **Vicon Nexus "Trajectories" CSV exports** of an open database of daily upper-limb
+# activities: 16 healthy adults reach forward and touch a target sticker with the index fingertip, with
+# the left or the right hand (`L`, `R` in the name), recorded at 100 Hz in millimetres with z up; four of
+# them are read here (chapter 15 takes all 160 through the paper's method). Nexus
 # writes a section name, the rate, the marker names with the subject's prefix (`ADL005:RFTP`), the
 # coordinate names and a units row before the frames; the files are read as they are, the rate and the
 # unit from their header. `--marker RFTP,LFTP` takes, in each file, the listed marker that moves most
 # (the moving hand's fingertip), and the name pattern splits names like `ADL005FR3`, which have no `_`:
 
 # %%
+adl_dir = work / "ue-adl"
+adl_dir.mkdir()
+for name in ["ADL001FL1", "ADL001FR1", "ADL002FR2", "ADL005FR3"]:
+    shutil.copy(f"../data/real/ue-adl-forward-reach/{name}.csv.gz", adl_dir)
 adl = sk.load_recordings(
-    "../data/real/ue-adl-forward-reach",
+    adl_dir,
     marker="RFTP,LFTP",
     up_axis="z",
     name_pattern=r"(?P<participant>ADL\d+)(?P<trial>F[LR]\d)",

@@ -10,6 +10,7 @@ sub-package per step of the paper's pipeline, each importing only those above it
 * :mod:`skilllib.prototypes`: silhouettes, K-means prototypes, stability, sensitivity, participants;
 * :mod:`skilllib.robot`: arms and their limits, reach, IK, the velocity transfer, dynamics, execution;
 * :mod:`skilllib.cohort`: the book's synthetic cohort (generative model, calibration);
+* :mod:`skilllib.task`: the task as data (segmentation rules, selection, features, robot; task files);
 * :mod:`skilllib.figures`: the figures of the pipeline and of the chapters;
 * :mod:`skilllib.pipeline`: :func:`~skilllib.pipeline.run` (``python -m skilllib run``), results.json,
   the output folder;
@@ -34,6 +35,7 @@ __getattr__, __dir__, _names = _lazy.attach(
         "prototypes",
         "robot",
         "cohort",
+        "task",
         "figures",
         "pipeline",
         "datasets",
@@ -142,6 +144,25 @@ __getattr__, __dir__, _names = _lazy.attach(
             "write_trc",
         ],
         "features": [
+            "apply_selection",
+            "DEFAULT_HOLD_S",
+            "EndRule",
+            "feature_label",
+            "FEATURE_UNITS",
+            "PAPER_END",
+            "PAPER_FEATURES",
+            "PAPER_SELECTION",
+            "PAPER_START",
+            "parse_end",
+            "parse_features",
+            "parse_selection",
+            "parse_start",
+            "parse_window",
+            "RuleError",
+            "SelectionError",
+            "SpeedThreshold",
+            "StartRule",
+            "Window",
             "Segment",
             "approaches",
             "choose_lowpass",
@@ -272,6 +293,7 @@ __getattr__, __dir__, _names = _lazy.attach(
             "SURVEY_CSV",
             "survey_summary",
         ],
+        "task": ["load_task", "PAPER_TASK", "preset_names", "Task", "TaskError"],
         "pipeline": [
             "run_command",
             "check_output",

@@ -20,6 +20,7 @@ SUBPACKAGES = [
     "features",
     "prototypes",
     "cohort",
+    "task",
     "figures",
     "datasets",
     "robot",

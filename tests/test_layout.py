@@ -13,7 +13,18 @@ import skilllib
 
 PACKAGE = Path(skilllib.__file__).parent
 #: The sub-packages in their order: each may import only those before it.
-LAYERS = ["datasets", "smoothness", "recordings", "features", "prototypes", "robot", "cohort", "figures", "pipeline"]
+LAYERS = [
+    "datasets",
+    "smoothness",
+    "recordings",
+    "features",
+    "prototypes",
+    "robot",
+    "cohort",
+    "task",
+    "figures",
+    "pipeline",
+]
 
 
 def _modules() -> list[tuple[str, Path]]:

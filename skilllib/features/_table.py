@@ -27,7 +27,17 @@ For every trial of :class:`skilllib.recordings.Recordings`:
   lies between 0 and 1 interval before the touch); ``sparc`` (Balasubramanian et al. 2015) with
   :data:`SPARC_PARAMS`, with ``sparc_band_end_hz`` (Hz, the last frequency of its band) and
   ``sparc_capped`` (True when the maximum cut-off fc, not the amplitude threshold, ended the band; see
-  :func:`skilllib.smoothness.sparc_bands`); ``ldlj`` log dimensionless jerk (Balasubramanian et al. 2015).
+  :func:`skilllib.smoothness.sparc_bands`); ``ldlj`` log dimensionless jerk (Balasubramanian et al. 2015);
+  ``peak_acc`` the peak magnitude of the tangential acceleration (m/s^2), max |d speed / dt| over the
+  segment with ``numpy.gradient(speed, 1 / fs)`` (NaN below 2 samples); ``path_length`` the distance
+  travelled over the segment (m), the trapezoidal integral of the speed, ``numpy.trapezoid(speed,
+  dx=1 / fs)``.
+* **other rules**: the task may start and end the movement otherwise (``start`` and ``end`` of
+  :func:`trial_features`, :mod:`skilllib.features._rules`): a relative onset (a fraction of the peak
+  speed), an event, the speed's offset, a height crossed on the up axis; :func:`segment_arrays` states
+  each. The end sample then stands where ``contact`` stands above: ``t_contact`` is its time stamp and
+  ``contact_speed`` the speed at the last sample before it. Events come from the recordings'
+  ``trial_events`` (C3D events).
 * **selection**: ``0.3 <= contact_speed <= 0.7`` m/s (the paper: 650 of 1500 trials).
 
 Every trial stays in the table: ``status`` is ``selected``, ``excluded`` (outside the window, with the
@@ -47,14 +57,15 @@ from .. import smoothness
 from ..recordings import ID_COLUMNS, Recordings, first_true, sort_ids
 from . import _vectorised as batch
 from ._filtering import NO_FILTER, Lowpass, choose_lowpass, measure_rest_noise
+from ._rules import PAPER_END, PAPER_START, EndRule, StartRule
 from ._segmentation import (
     CONTACT_WINDOW,
     MIN_DIFF_WINDOW,
     MIN_SEGMENT_SAMPLES,
-    ONSET_SPEED,
     Segment,
     diff_window,
     segment_arrays,
+    start_rule,
     velocity,
 )
 
@@ -71,6 +82,8 @@ FEATURE_COLUMNS = (
     "sparc_band_end_hz",
     "sparc_capped",
     "ldlj",
+    "peak_acc",
+    "path_length",
     "n",
     "t_onset",
     "t_contact",
@@ -91,16 +104,42 @@ def _as_recordings(recordings: Recordings) -> Recordings:
     return recordings
 
 
+def trial_events(recordings: Recordings, participant: Any, trial: Any) -> dict[str, np.ndarray] | None:
+    """One trial's events (label, text -> sorted times in s), when the recordings have ``trial_events``.
+
+    Parameters
+    ----------
+    recordings : Recordings
+        The recordings (t in s).
+    participant, trial : Any
+        The trial's ids (text).
+
+    Returns
+    -------
+    dict of str to numpy.ndarray or None
+        The events (times in s); None when the recordings cannot say.
+    """
+    get = getattr(recordings, "trial_events", None)
+    return get(participant, trial) if callable(get) else None
+
+
+def _needs_events(start: StartRule, end: EndRule) -> bool:
+    return start.kind == "event" or end.kind == "event"
+
+
 def segment(
     recordings: Recordings,
     participant: Any,
     trial: Any,
     *,
-    onset_speed: float = ONSET_SPEED,
+    start: StartRule = PAPER_START,
+    end: EndRule = PAPER_END,
+    onset_speed: float | None = None,
     min_samples: int = MIN_SEGMENT_SAMPLES,
     lowpass: Lowpass | None = None,
 ) -> Segment:
-    """The segmented approach (onset to the last sample before contact) of one trial.
+    """The segmented movement (onset to the last sample before the end; the paper: before contact) of one
+    trial, under the task's rules (:func:`segment_arrays`; events from the recordings' ``trial_events``).
 
     Parameters
     ----------
@@ -111,8 +150,12 @@ def segment(
         The participant's id (text; a number is looked up as its text).
     trial : Any
         The trial's id (text; a number is looked up as its text).
-    onset_speed : float
-        The speed above which the movement has begun (m/s).
+    start : StartRule
+        Where the movement starts (:func:`skilllib.features.parse_start`; speeds in m/s).
+    end : EndRule
+        Where it ends (:func:`skilllib.features.parse_end`; speeds in m/s, heights in m, hold in s).
+    onset_speed : float or None
+        Kept for older callers: the start ``speed`` with this absolute threshold (m/s); None: ``start``.
     min_samples : int
         The fewest samples a segment may have (samples).
     lowpass : Lowpass or None
@@ -137,12 +180,15 @@ def segment(
     row = rec.trials[(rec.trials["participant"] == participant) & (rec.trials["trial"] == trial)].iloc[0]
     if row["status"] != "ok":
         raise ValueError(f"trial {trial!r} of participant {participant!r} is invalid: {row['reason']}")
+    start = start_rule(start, onset_speed)
     seg = segment_arrays(
         tr.t,
         tr.pos,
         tr.contact,
         rec.fs,
-        onset_speed=onset_speed,
+        start=start,
+        end=end,
+        events=trial_events(rec, participant, trial) if _needs_events(start, end) else None,
         min_samples=min_samples,
         participant=participant,
         trial=trial,
@@ -162,16 +208,20 @@ def _window_reason(v: float, window: tuple[float, float]) -> str:
     return ""
 
 
-def approaches(recordings: Recordings) -> list[np.ndarray]:
+def approaches(recordings: Recordings, *, end: EndRule = PAPER_END) -> list[np.ndarray]:
     """The positions before first contact of every usable trial (status ok), in trial order.
 
-    What :func:`skilllib.features.choose_lowpass` looks at to choose a cut-off.
+    What :func:`skilllib.features.choose_lowpass` looks at to choose a cut-off. For an end rule other than
+    ``contact`` (offset, event, height), the whole trial: where such an end lies depends on the filter
+    being chosen, so the residual analysis reads every sample the movement may hold.
 
     Parameters
     ----------
     recordings : Recordings or pandas.DataFrame
         The recordings (t in s, positions in m), or a long table :func:`skilllib.recordings.recordings_from_frame`
         validates.
+    end : EndRule
+        The task's end rule (:func:`skilllib.features.parse_end`; speeds in m/s, heights in m).
 
     Returns
     -------
@@ -183,15 +233,18 @@ def approaches(recordings: Recordings) -> list[np.ndarray]:
     for (p, tr), status in zip(rec.keys(), rec.trials["status"]):
         if status == "ok":
             d = rec.trial(p, tr)
-            hits = np.flatnonzero(d.contact)
+            hits = np.flatnonzero(d.contact) if end.kind == "contact" else np.zeros(0, int)
             out.append(d.pos[: int(hits[0])] if hits.size else d.pos)
     return out
 
 
-def run_lowpass(recordings: Recordings, lowpass: str | float | Lowpass | None = "auto") -> Lowpass:
+def run_lowpass(
+    recordings: Recordings, lowpass: str | float | Lowpass | None = "auto", *, end: EndRule = PAPER_END
+) -> Lowpass:
     """The :class:`skilllib.features.Lowpass` that ``lowpass`` means for these recordings.
 
-    ``"auto"``: Winter's residual analysis over their approaches, the noise at rest measured per axis in
+    ``"auto"``: Winter's residual analysis over their approaches (:func:`approaches`: the samples before
+    contact, or the whole trial for an end other than ``contact``), the noise at rest measured per axis in
     every trial's rest window (:func:`skilllib.features.measure_rest_noise`).
 
     Parameters
@@ -201,6 +254,8 @@ def run_lowpass(recordings: Recordings, lowpass: str | float | Lowpass | None = 
         validates.
     lowpass : str, float, Lowpass or None
         ``"auto"``, ``"none"`` (text), a cut-off frequency (Hz) or a :class:`Lowpass`.
+    end : EndRule
+        The task's end rule (:func:`skilllib.features.parse_end`; speeds in m/s, heights in m).
 
     Returns
     -------
@@ -217,12 +272,14 @@ def run_lowpass(recordings: Recordings, lowpass: str | float | Lowpass | None = 
     keys, runs = rec.keys(), rec.runs()
     t, pos, contact = rec.arrays()
     ok = (rec.trials["status"] == "ok").to_numpy()
-    length = first_true(contact, runs)  # the approach: rows before the first contact (all without one)
+    by_contact = end.kind == "contact"
+    # the approach: rows before the first contact (all without one; all for another end)
+    length = first_true(contact, runs) if by_contact else np.asarray(runs.length).copy()
     separate = {}
     for i in np.flatnonzero(ok):
         if rec.is_resampled(*keys[i]):
             d = rec.trial(*keys[i])
-            hits = np.flatnonzero(d.contact)
+            hits = np.flatnonzero(d.contact) if by_contact else np.zeros(0, int)
             separate[int(i)] = d.pos[: int(hits[0])] if hits.size else d.pos
             length[i] = len(separate[int(i)])
     picked = np.flatnonzero(ok & (length >= 4))
@@ -239,7 +296,9 @@ def trial_features(
     *,
     sparc_params: Mapping[str, float] | None = None,
     window: tuple[float, float] = CONTACT_WINDOW,
-    onset_speed: float = ONSET_SPEED,
+    start: StartRule = PAPER_START,
+    end: EndRule = PAPER_END,
+    onset_speed: float | None = None,
     min_samples: int = MIN_SEGMENT_SAMPLES,
     lowpass: str | float | Lowpass | None = "auto",
     progress: Callable[[Sequence[Any], str], Iterable[Any]] | None = None,
@@ -247,13 +306,16 @@ def trial_features(
     """One row per trial of ``recordings`` (all of them, in their order) with its features and status.
 
     Computed for all trials at once (:mod:`skilllib.features`), with the same values as the per-trial
-    :func:`segment_arrays`, :func:`skilllib.smoothness.ldlj` and :func:`skilllib.smoothness.sparc_bands`.
+    :func:`segment_arrays`, :func:`skilllib.smoothness.ldlj` and :func:`skilllib.smoothness.sparc_bands`
+    (the paper's rules batched; other start and end rules trial by trial through :func:`segment_arrays`).
 
     Columns: ``participant, trial, status`` (``selected`` / ``excluded`` / ``invalid``), ``reason``
-    (empty when selected), ``pv`` (m/s), ``contact_speed`` (m/s), ``duration`` (s), ``sparc``,
-    ``sparc_band_end_hz`` (Hz), ``sparc_capped`` (nullable boolean: fc ended the band), ``ldlj``, ``n``
-    (segment samples), ``t_onset``, ``t_contact`` (s, time stamps of the onset sample and of the
-    first contact sample), ``resampled`` (the trial's time stamps were irregular and it was resampled onto
+    (empty when selected), ``pv`` (m/s), ``contact_speed`` (m/s; the speed at the last sample before the
+    end), ``duration`` (s), ``sparc``, ``sparc_band_end_hz`` (Hz), ``sparc_capped`` (nullable boolean: fc
+    ended the band), ``ldlj``, ``peak_acc`` (m/s^2, peak |d speed / dt|), ``path_length`` (m, distance
+    travelled over the segment), ``n`` (segment samples), ``t_onset``, ``t_contact`` (s, time stamps of
+    the onset sample and of the end sample: the first contact sample, or the offset, event or height
+    sample of another end rule), ``resampled`` (the trial's time stamps were irregular and it was resampled onto
     the uniform grid, :mod:`skilllib.recordings`), ``repairs`` (text, '' when none: the real-data defects
     repaired, :func:`skilllib.recordings.repair_trial`) and ``n_repaired`` (samples replaced by
     interpolation). Features are NaN (NA) only for invalid trials.
@@ -268,14 +330,21 @@ def trial_features(
         :data:`SPARC_PARAMS`.
     window : tuple of float
         The inclusive contact-speed window of the selected trials (m/s).
-    onset_speed : float
-        The speed above which the movement has begun (m/s).
+    start : StartRule
+        Where a movement starts (:func:`skilllib.features.parse_start`; speeds in m/s); recorded in
+        ``attrs["start"]`` of the result.
+    end : EndRule
+        Where it ends (:func:`skilllib.features.parse_end`; speeds in m/s, heights in m, hold in s);
+        recorded in ``attrs["end"]``. Events (for ``event:LABEL``) come from the recordings'
+        ``trial_events`` when they have it; without it, an event rule names the missing event per trial.
+    onset_speed : float or None
+        Kept for older callers: the start ``speed`` with this absolute threshold (m/s); None: ``start``.
     min_samples : int
         The fewest samples a segment may have (samples).
     lowpass : str, float, Lowpass or None
-        The positions' low-pass filter (:func:`run_lowpass`): ``"auto"`` (which does not filter the book's
-        cohort), ``"none"`` (text), a cut-off (Hz) or a :class:`Lowpass`; recorded in ``attrs["lowpass"]``
-        of the result.
+        The positions' low-pass filter (:func:`run_lowpass`, with the approaches of ``end``): ``"auto"``
+        (which does not filter the book's cohort), ``"none"`` (text), a cut-off (Hz) or a :class:`Lowpass`;
+        recorded in ``attrs["lowpass"]`` of the result.
     progress : callable or None
         ``progress(items, description)`` may wrap the loop over trials (e.g. tqdm; description text).
 
@@ -285,14 +354,16 @@ def trial_features(
         The feature table (columns and units above).
     """
     rec = _as_recordings(recordings)
+    start = start_rule(start, onset_speed)
     params = {**SPARC_PARAMS, **(sparc_params or {})}
-    filt = run_lowpass(rec, lowpass)
+    filt = run_lowpass(rec, lowpass, end=end)
     trials = rec.trials
     keys = rec.keys()
     ok = (trials["status"] == "ok").to_numpy()
     for _ in progress([len(keys)], "features") if progress else ():  # vectorised: the bar has one step
         pass
     separate = {i: rec.trial(*keys[i]) for i in np.flatnonzero(ok) if rec.is_resampled(*keys[i])}
+    events = {int(i): trial_events(rec, *keys[i]) for i in np.flatnonzero(ok)} if _needs_events(start, end) else None
     t, pos, contact = rec.arrays()
     seg = batch.segment_many(
         t,
@@ -302,7 +373,9 @@ def trial_features(
         rec.fs,
         which=ok,
         separate=separate,
-        onset_speed=onset_speed,
+        start=start,
+        end=end,
+        events=events,
         min_samples=min_samples,
         lowpass=filt,
     )
@@ -337,6 +410,8 @@ def trial_features(
             "sparc_band_end_hz": band_end,
             "sparc_capped": capped,
             "ldlj": seg.ldlj,
+            "peak_acc": seg.peak_acc,
+            "path_length": seg.path_length,
             "n": pd.array(np.where(done, seg.n, 0), dtype="Int64"),
             "t_onset": seg.t_onset,
             "t_contact": seg.t_contact,
@@ -350,9 +425,10 @@ def trial_features(
     if filt.borderline and not filt.note:  # what the other choice would change (skilllib.features._filtering)
         other = NO_FILTER if filt.cutoff_hz is not None else Lowpass(filt.alternative_hz, "given", fs=rec.fs)
         if other.cutoff_hz is not None or filt.cutoff_hz is not None:
-            kw = dict(sparc_params=sparc_params, window=window, onset_speed=onset_speed, min_samples=min_samples)
+            kw = dict(sparc_params=sparc_params, window=window, start=start, end=end, min_samples=min_samples)
             filt = replace(filt, note=borderline_note(filt, out, trial_features(rec, lowpass=other, **kw)))
     out.attrs["lowpass"] = filt
+    out.attrs["start"], out.attrs["end"] = start, end
     return out
 
 

@@ -6,13 +6,30 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
+from ..features import FEATURE_UNITS, feature_label
 from ..prototypes import PrototypeResult, SilhouetteSweep, SparcSensitivity
 from ._common import CLUSTER_COLORS
+
+#: The paper's clustering features: the figures' wording for them is the book's (``"0 = lowest PV"``).
+_PAPER = ("pv", "sparc")
+#: Columns of ``PrototypeResult.prototypes`` that are not features.
+_NOT_FEATURES = ("participant", "trial", "row")
 
 
 def _cluster_color(c: int) -> tuple[float, float, float]:
     """Colour of cluster ``c``; CLUSTER_COLORS repeats beyond its length (k > 10)."""
     return CLUSTER_COLORS[int(c) % len(CLUSTER_COLORS)]
+
+
+def _short(name: str) -> str:
+    """A feature's short name for text: ``PV``, ``SPARC``, ``LDLJ``, ``duration`` (unknown: the column)."""
+    return {"pv": "PV"}.get(name, FEATURE_UNITS.get(name, (name, ""))[0])
+
+
+def _value_text(name: str, value: float) -> str:
+    """``"PV = 0.52 m/s"``, ``"SPARC = -1.80"``: a feature's value with its unit."""
+    unit = FEATURE_UNITS.get(name, (name, ""))[1]
+    return f"{_short(name)} = {value:.2f}" + (f" {unit}" if unit else "")
 
 
 def plot_silhouette_sweep(sweep: SilhouetteSweep, chosen_k: int | None = None) -> plt.Figure:
@@ -116,15 +133,17 @@ def plot_silhouettes(result: PrototypeResult) -> plt.Figure:
     ax.set_ylim(0, y0)
     ax.set_yticks([])
     ax.set_xlabel("silhouette coefficient")
+    features = tuple(result.features)
     ax.set_ylabel(
-        "trials, by cluster (0 = lowest PV)"
+        f"trials, by cluster (0 = lowest {_short(features[0])})"
         if est is None
         else f"sampled trials ({est.repeats} x {est.sample_size} of {est.n_points}), by cluster"
     )
     note = "; * no trial above it" if failing else ""
     how = "dashed" if est is None else f"dashed; estimate, SD {est.sd:.3f}"
+    space = f"{result.scaling} features" if features == _PAPER else f"{result.scaling} {', '.join(features)}"
     ax.set_title(
-        f"k = {result.k} ({result.method}, {result.scaling} features): average {avg:.3f} ({how}){note}",
+        f"k = {result.k} ({result.method}, {space}): average {avg:.3f} ({how}){note}",
         fontsize="small",
     )
     return fig
@@ -133,7 +152,11 @@ def plot_silhouettes(result: PrototypeResult) -> plt.Figure:
 def plot_clusters(result: PrototypeResult) -> plt.Figure:
     """PV-SPARC tuples coloured by cluster, with the centres (x) and the prototype trials (circled).
 
-    The paper's Fig. 2a, clusters numbered by centre PV.
+    The paper's Fig. 2a, clusters numbered by centre PV. The axes are the result's first two features
+    (``result.features``; the paper's PV and SPARC), labelled with
+    :func:`skilllib.features.feature_label`. With more than two features the plane shows a projection:
+    the title says which two of how many are shown, and the prototypes -- the trials nearest their
+    centre in all features (in the clustering space) -- need not look nearest in it.
 
     Parameters
     ----------
@@ -143,15 +166,18 @@ def plot_clusters(result: PrototypeResult) -> plt.Figure:
     Returns
     -------
     matplotlib.figure.Figure
-        The figure; PV (m/s) against SPARC (dimensionless).
+        The figure; the second feature against the first, each in its unit (the paper: SPARC,
+        dimensionless, against PV in m/s).
     """
     d = result.data
+    features = tuple(result.features)
+    fx, fy = features[:2]
     fig, ax = plt.subplots(figsize=(5.5, 4))
     for c in range(result.k):
         m = d["cluster"].to_numpy() == c
         ax.scatter(
-            d.loc[m, "pv"],
-            d.loc[m, "sparc"],
+            d.loc[m, fx],
+            d.loc[m, fy],
             s=10,
             alpha=0.6,
             color=_cluster_color(c),
@@ -159,8 +185,8 @@ def plot_clusters(result: PrototypeResult) -> plt.Figure:
             label=f"cluster {c} (n = {int(result.sizes[c])})",
         )
     ax.scatter(
-        result.centres["pv"],
-        result.centres["sparc"],
+        result.centres[fx],
+        result.centres[fy],
         marker="X",
         s=90,
         color="k",
@@ -170,8 +196,8 @@ def plot_clusters(result: PrototypeResult) -> plt.Figure:
         zorder=3,
     )
     ax.scatter(
-        result.prototypes["pv"],
-        result.prototypes["sparc"],
+        result.prototypes[fx],
+        result.prototypes[fy],
         marker="o",
         s=110,
         facecolor="none",
@@ -180,8 +206,15 @@ def plot_clusters(result: PrototypeResult) -> plt.Figure:
         label="prototype (trial nearest the centre)",
         zorder=4,
     )
-    ax.set_xlabel("peak speed PV (m/s)")
-    ax.set_ylabel("SPARC")
+    ax.set_xlabel(feature_label(fx))
+    ax.set_ylabel(feature_label(fy))
+    if len(features) > 2:
+        rest = ", ".join(_short(f) for f in features[2:])
+        ax.set_title(
+            f"{_short(fx)} and {_short(fy)}: 2 of {len(features)} clustering features shown (not shown: {rest});\n"
+            f"clusters, centres and prototypes in all {len(features)} ({result.scaling} scaling)",
+            fontsize="small",
+        )
     ax.legend(fontsize="x-small", frameon=False, loc="center left", bbox_to_anchor=(1.01, 0.5))
     return fig
 
@@ -192,13 +225,17 @@ def plot_prototype_profiles(
 ) -> plt.Figure:
     """Speed profiles of the prototypes labelled with their PV and SPARC: the paper's Fig. 2b.
 
+    The labels give every clustering feature the prototypes hold (the columns of ``prototypes`` other
+    than participant, trial and row), in their order.
+
     Parameters
     ----------
     profiles : list of tuple of numpy.ndarray
         ``profiles[i]`` is (t in s, speed in m/s) of the prototype of cluster i, in the row order of
         ``prototypes``.
     prototypes : pandas.DataFrame
-        ``PrototypeResult.prototypes``: columns pv (m/s), sparc (dimensionless); index = cluster id.
+        ``PrototypeResult.prototypes``: the features, e.g. pv (m/s), sparc (dimensionless); index =
+        cluster id.
 
     Returns
     -------
@@ -207,6 +244,7 @@ def plot_prototype_profiles(
     """
     if len(profiles) != len(prototypes):
         raise ValueError(f"{len(profiles)} speed profiles for {len(prototypes)} prototypes")
+    features = [col for col in prototypes.columns if col not in _NOT_FEATURES]
     fig, ax = plt.subplots(figsize=(5.5, 3.6))
     for (c, p), (t, v) in zip(prototypes.iterrows(), profiles):
         ax.plot(
@@ -214,7 +252,7 @@ def plot_prototype_profiles(
             np.asarray(v),
             color=_cluster_color(c),
             lw=1.6,
-            label=f"cluster {c}: PV = {p['pv']:.2f} m/s, SPARC = {p['sparc']:.2f}",
+            label=f"cluster {c}: " + ", ".join(_value_text(f, p[f]) for f in features),
         )
     ax.set_xlabel("time (s)")
     ax.set_ylabel("speed (m/s)")

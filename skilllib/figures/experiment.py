@@ -29,11 +29,16 @@ def _pcolor(participants: list, p) -> tuple[float, float, float]:
     return PARTICIPANT_COLORS[list(participants).index(p) % len(PARTICIPANT_COLORS)]
 
 
-def _approach(rec: Recordings, p, tr) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
-    """t (s), y (m) of the whole trial, speed (m/s) before contact (as the features), contact index."""
+def _approach(rec: Recordings, p, tr, t_end: float | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+    """t (s), y (m) of the whole trial, speed (m/s) before the end (as the features), the end's index: the
+    first contact sample, or the sample at ``t_end`` (s; the feature table's ``t_contact``, the end of any
+    rule) when given; the speed is then differentiated over the whole trial."""
     d = rec.trial(p, tr)
-    c = int(np.flatnonzero(d.contact)[0])
-    return d.t, d.pos[:, 1], np.linalg.norm(velocity(d.pos[:c], rec.fs), axis=1), c
+    if t_end is None or not np.isfinite(t_end):
+        c = int(np.flatnonzero(d.contact)[0])
+        return d.t, d.pos[:, 1], np.linalg.norm(velocity(d.pos[:c], rec.fs), axis=1), c
+    c = int(np.argmin(np.abs(d.t - t_end)))
+    return d.t, d.pos[:, 1], np.linalg.norm(velocity(d.pos, rec.fs), axis=1)[:c], c
 
 
 #: Participants the per-participant figures of a run draw at most (one panel or box each).
@@ -106,7 +111,7 @@ def trials_window(
 
 
 def plot_trials_by_participant(
-    recordings: Recordings, features: pd.DataFrame, window: tuple[float, float] | None = None
+    recordings: Recordings, features: pd.DataFrame, window: tuple[float, float] | None = None, *, end: str = "contact"
 ) -> plt.Figure:
     """The paper's Fig. 1b redrawn: height and speed of every valid trial against time from contact.
 
@@ -125,6 +130,10 @@ def plot_trials_by_participant(
     window : tuple of float or None
         The time span shown, relative to contact (s); None: :func:`trials_window`, from the earliest onset
         (less 0.2 s) to the end of the recordings (at most 0.3 s after contact).
+    end : str
+        What ends the segments (text): ``"contact"`` (the paper: speed differentiated before the first
+        contact sample), or the word of another end rule (``"offset"``, ...): the time axis then counts
+        from each trial's end sample (``t_contact``) and the speed is the whole trial's.
 
     Returns
     -------
@@ -145,8 +154,8 @@ def plot_trials_by_participant(
         lines = {"y": {True: [], False: []}, "v": {True: [], False: []}}
         onsets = []
         g = f.loc[f["participant"] == p]
-        for tr, status, t_on in g[["trial", "status", "t_onset"]].itertuples(index=False):
-            t, y, v, c = _approach(recordings, p, tr)
+        for tr, status, t_on, t_end in g[["trial", "status", "t_onset", "t_contact"]].itertuples(index=False):
+            t, y, v, c = _approach(recordings, p, tr, None if end == "contact" else float(t_end))
             tt = t - t[c]
             keep = (tt >= window[0]) & (tt <= window[1])
             sel = status == "selected"
@@ -174,9 +183,9 @@ def plot_trials_by_participant(
         axs[2 * (i // ncol), i % ncol].axis("off")
         axs[2 * (i // ncol) + 1, i % ncol].axis("off")
         axs[2 * (i // ncol) - 1, i % ncol].tick_params(labelbottom=True)
-        axs[2 * (i // ncol) - 1, i % ncol].set_xlabel("time from contact (s)")
+        axs[2 * (i // ncol) - 1, i % ncol].set_xlabel(f"time from {end} (s)")
     for ax in axs[-1, : len(parts) - (prow - 1) * ncol]:
-        ax.set_xlabel("time from contact (s)")
+        ax.set_xlabel(f"time from {end} (s)")
     fig.tight_layout()
     return fig
 
@@ -260,7 +269,9 @@ def plot_segmentation(recordings: Recordings, features: pd.DataFrame, keys: list
     return fig
 
 
-def plot_participant_features(features: pd.DataFrame) -> plt.Figure:
+def plot_participant_features(
+    features: pd.DataFrame, *, window: tuple[float, float] | None = CONTACT_WINDOW, end: str = "contact"
+) -> plt.Figure:
     """Per participant, peak speed, contact speed, duration and SPARC of every valid trial.
 
     Peak speed (m/s), contact speed (m/s, the selection window shaded), duration (s) and SPARC (box:
@@ -271,6 +282,10 @@ def plot_participant_features(features: pd.DataFrame) -> plt.Figure:
     features : pandas.DataFrame
         The per-trial table of :func:`skilllib.features.trial_features` (pv and contact_speed in m/s,
         duration in s, sparc dimensionless).
+    window : tuple of float or None
+        The contact-speed window of the selection, shaded (m/s); None: none shown.
+    end : str
+        What ends the segments (text: ``"contact"``, ``"offset"``, ...), for the labels.
 
     Returns
     -------
@@ -281,8 +296,8 @@ def plot_participant_features(features: pd.DataFrame) -> plt.Figure:
     parts = sort_ids(f["participant"].unique())
     cols = [
         ("pv", "peak speed PV (m/s)"),
-        ("contact_speed", "contact speed (m/s)"),
-        ("duration", "duration onset-contact (s)"),
+        ("contact_speed", f"{'contact' if end == 'contact' else 'end'} speed (m/s)"),
+        ("duration", f"duration onset-{end} (s)"),
         ("sparc", "SPARC"),
     ]
     fig, axs = plt.subplots(len(cols), 1, figsize=(7.5, 8), sharex=True)
@@ -297,15 +312,22 @@ def plot_participant_features(features: pd.DataFrame) -> plt.Figure:
             ax.scatter(x[~sel], g[c].to_numpy()[~sel], s=3, color="0.7", zorder=2)
             ax.scatter(x[sel], g[c].to_numpy()[sel], s=3, color=_pcolor(parts, p), zorder=3)
         ax.set_ylabel(label, fontsize=8)
-        if c == "contact_speed":
-            ax.axhspan(*CONTACT_WINDOW, color="tab:green", alpha=0.12, lw=0)
+        if c == "contact_speed" and window is not None:
+            ax.axhspan(*window, color="tab:green", alpha=0.12, lw=0)
     axs[-1].set_xticks(range(len(parts)), [str(p) for p in parts])
     axs[-1].set_xlabel("participant")
     fig.tight_layout()
     return fig
 
 
-def plot_contact_speeds(features: pd.DataFrame, bin_width: float = 0.05, ax: plt.Axes | None = None) -> plt.Figure:
+def plot_contact_speeds(
+    features: pd.DataFrame,
+    bin_width: float = 0.05,
+    ax: plt.Axes | None = None,
+    *,
+    window: tuple[float, float] | None = CONTACT_WINDOW,
+    end: str = "contact",
+) -> plt.Figure:
     """Histogram of contact speeds of the valid trials; the selection window shaded.
 
     Parameters
@@ -317,6 +339,11 @@ def plot_contact_speeds(features: pd.DataFrame, bin_width: float = 0.05, ax: plt
         The width of a bin (m/s).
     ax : matplotlib.axes.Axes or None
         The axes to draw into; None: a new figure.
+    window : tuple of float or None
+        The contact-speed window of the selection, shaded (m/s); None: none (the selected trials are then
+        counted in the title).
+    end : str
+        What ends the segments (text: ``"contact"``, ``"offset"``, ...), for the axis label.
 
     Returns
     -------
@@ -327,16 +354,19 @@ def plot_contact_speeds(features: pd.DataFrame, bin_width: float = 0.05, ax: plt
     n_sel = int((features["status"] == "selected").sum())
     fig, ax = plt.subplots(figsize=(5.5, 3.2)) if ax is None else (ax.figure, ax)
     ax.hist(v, bins=np.arange(0, v.max() + bin_width, bin_width), color="0.55")
-    ax.axvspan(
-        *CONTACT_WINDOW,
-        color="tab:green",
-        alpha=0.15,
-        lw=0,
-        label=f"selected: {CONTACT_WINDOW[0]:g}-{CONTACT_WINDOW[1]:g} m/s ({n_sel} trials)",
-    )
-    ax.set_xlabel("contact speed (m/s)")
+    if window is not None:
+        ax.axvspan(
+            *window,
+            color="tab:green",
+            alpha=0.15,
+            lw=0,
+            label=f"selected: {window[0]:g}-{window[1]:g} m/s ({n_sel} trials)",
+        )
+        ax.legend(frameon=False, fontsize=8)
+    else:
+        ax.set_title(f"{n_sel} of {len(v)} valid trials selected", fontsize=9)
+    ax.set_xlabel(f"{'contact' if end == 'contact' else 'end'} speed (m/s)")
     ax.set_ylabel("trials")
-    ax.legend(frameon=False, fontsize=8)
     return fig
 
 
@@ -473,7 +503,13 @@ def plot_sparc_vs_length(features: pd.DataFrame, fs: float, amp_th: float = DEFA
     return fig
 
 
-def plot_feature_overview(features: pd.DataFrame, amp_th: float = DEFAULT_AMP_TH) -> plt.Figure:
+def plot_feature_overview(
+    features: pd.DataFrame,
+    amp_th: float = DEFAULT_AMP_TH,
+    *,
+    window: tuple[float, float] | None = CONTACT_WINDOW,
+    end: str = "contact",
+) -> plt.Figure:
     """The pipeline's features figure: contact-speed histogram and PV against SPARC.
 
     The contact-speed histogram with the selection window (m/s) and PV (m/s) against SPARC of the valid
@@ -487,6 +523,10 @@ def plot_feature_overview(features: pd.DataFrame, amp_th: float = DEFAULT_AMP_TH
     amp_th : float
         The amplitude threshold of the SPARC bands, a fraction of the peak magnitude (dimensionless), for
         the bound of :func:`threshold_bound`.
+    window : tuple of float or None
+        The contact-speed window of the selection (m/s), as in :func:`plot_contact_speeds`.
+    end : str
+        What ends the segments (text), as in :func:`plot_contact_speeds`.
 
     Returns
     -------
@@ -494,7 +534,7 @@ def plot_feature_overview(features: pd.DataFrame, amp_th: float = DEFAULT_AMP_TH
         The figure; two panels (m/s; m/s against SPARC).
     """
     fig, (a, b) = plt.subplots(1, 2, figsize=(12, 3.8))
-    plot_contact_speeds(features, ax=a)
+    plot_contact_speeds(features, ax=a, window=window, end=end)
     plot_feature_space(features, ax=b, amp_th=amp_th)
     fig.tight_layout()
     return fig

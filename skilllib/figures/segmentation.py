@@ -1,8 +1,10 @@
 """The segmentation of every trial, page by page: what the analysis saw of each recording.
 
 :func:`plot_segmentation_pages` draws small multiples (24 trials a page): the speed of the whole recording
-with the onset, the contact and the analysed segment marked, repaired samples, resampling and the trial's
-status and reason. :func:`segmentation_keys` chooses the trials a run draws (every invalid one first).
+with the run's onset threshold (absolute, or computed from each trial's peak), the onset, the end sample
+(contact, offset, event or height, as the run's end rule says, labelled so) and the analysed segment
+marked, repaired samples, resampling and the trial's status and reason. :func:`segmentation_keys` chooses
+the trials a run draws (every invalid one first).
 """
 
 from __future__ import annotations
@@ -18,7 +20,16 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from matplotlib.ticker import MaxNLocator
 
-from ..features import ONSET_SPEED, Lowpass, velocity
+from ..features import (
+    PAPER_END,
+    PAPER_START,
+    EndRule,
+    Lowpass,
+    StartRule,
+    segmentation_detail,
+    trial_events,
+    velocity,
+)
 from ..recordings import Recordings, gap_runs, natural_key
 from .experiment import _plabel
 
@@ -116,36 +127,85 @@ def _run_speed(pos: np.ndarray, fs: float) -> np.ndarray:
     return out
 
 
-def _draw_trial(ax: plt.Axes, recordings: Recordings, row: Any, lowpass: Lowpass | None) -> dict[str, bool]:
+def _detail(recordings: Recordings, p: Any, tr: Any, d: Any, fs: float, lowpass, start, end):
+    """:func:`skilllib.features.segmentation_detail` of the trial, or None when its samples cannot be
+    analysed (missing positions, no rate)."""
+    pos = np.asarray(d.pos, dtype=float)
+    if not np.isfinite(fs) or len(pos) < 2 or not np.isfinite(pos).all():
+        return None
+    events = trial_events(recordings, p, tr) if "event" in (start.kind, end.kind) else None
+    return segmentation_detail(d.t, pos, d.contact, fs, start=start, end=end, events=events, lowpass=lowpass)
+
+
+def _draw_trial(
+    ax: plt.Axes,
+    recordings: Recordings,
+    row: Any,
+    lowpass: Lowpass | None,
+    start: StartRule = PAPER_START,
+    end: EndRule = PAPER_END,
+) -> dict[str, bool]:
     """One panel; returns which of the legend's elements it drew."""
     p, tr, status = row.participant, row.trial, row.status
     d = recordings.trial(p, tr)
     t = np.asarray(d.t, dtype=float)
-    hits = np.flatnonzero(d.contact)
-    c = int(hits[0]) if hits.size else len(t)
     fs = float(recordings.fs)
     if not np.isfinite(fs):  # no usable trial gave the rate: this trial's own median interval, if any
         dt = np.diff(t)
         dt = dt[np.isfinite(dt) & (dt > 0)]
         fs = 1.0 / float(np.median(dt)) if dt.size else np.nan
-    whole, approach = _speeds(t, d.pos, c, fs, lowpass)
-    drew = {"repaired": False, "onset": False, "contact": False, "segment": False}
+    detail = _detail(recordings, p, tr, d, fs, lowpass, start, end)
+    if end.kind == "contact":  # the paper: the speed before contact as analysed, the rest as recorded
+        hits = np.flatnonzero(d.contact)
+        c = int(hits[0]) if hits.size else len(t)
+        whole, approach = _speeds(t, d.pos, c, fs, lowpass)
+    else:  # the end is where the rule found it (the table's t_contact, or what the analysis got to)
+        c = -1
+        if pd.notna(row.t_contact):
+            c = int(np.searchsorted(t, float(row.t_contact)))
+        elif detail is not None and detail.end >= 0:
+            c = detail.end
+        whole_pos = np.asarray(d.pos, dtype=float)
+        if end.kind == "offset" and lowpass is not None and lowpass.cutoff_hz is not None and detail is not None:
+            whole_pos = lowpass.apply(whole_pos, fs)  # offset: the whole trial filtered as analysed
+        whole = _run_speed(whole_pos, fs) if np.isfinite(fs) else np.full(len(t), np.nan)
+        approach = detail.speed if detail is not None else np.zeros(0)
+    drew = {"repaired": False, "onset": False, "contact": False, "segment": False, "offset_threshold": False}
     ax.plot(t, whole, color="0.65", lw=0.7)
-    ax.plot(t[:c], approach, color="k", lw=0.9)
-    ax.axhline(ONSET_SPEED, color="0.45", lw=0.6, ls=":")
+    ax.plot(t[: len(approach)], approach, color="k", lw=0.9)
+    on_th = detail.start_threshold if detail is not None else np.nan
+    if not np.isfinite(on_th) and start.kind == "speed" and start.threshold.fraction is None:
+        on_th = float(start.threshold.speed)
+    if np.isfinite(on_th):
+        ax.axhline(on_th, color="0.45", lw=0.6, ls=":")
+    off_th = detail.end_threshold if detail is not None else np.nan
+    if np.isfinite(off_th) and not (np.isfinite(on_th) and np.isclose(off_th, on_th, rtol=1e-9, atol=0)):
+        ax.axhline(off_th, color="0.45", lw=0.6, ls="-.")
+        drew["offset_threshold"] = True
     t_on = float(row.t_onset) if pd.notna(row.t_onset) else np.nan
-    if not np.isfinite(t_on) and c < len(t) and len(approach):  # an invalid trial: the analysis' crossing, if any
-        moving = np.flatnonzero(approach > ONSET_SPEED)
-        t_on = float(t[moving[0]]) if moving.size and moving[0] > 0 else np.nan
+    if not np.isfinite(t_on) and detail is not None and detail.onset > 0:  # an invalid trial: the analysis' onset
+        if end.kind != "contact" or c < len(t):
+            t_on = float(t[detail.onset])
     if np.isfinite(t_on):
         ax.axvline(t_on, color=ONSET_COLOR, lw=1.0, ls="--")
         drew["onset"] = True
-        if status != "invalid":
+        if status != "invalid" and 0 < c <= len(t):
             ax.axvspan(t_on, t[c - 1], color=SEGMENT_COLOR, alpha=0.13, lw=0)
             drew["segment"] = True
-    if c < len(t):
+    if 0 <= c < len(t):
         t_c = float(row.t_contact) if pd.notna(row.t_contact) else float(t[c])
         ax.axvline(t_c, color=CONTACT_COLOR, lw=1.0)
+        ax.text(
+            t_c,
+            0.97,
+            _END_MARKS[end.kind] + " ",
+            transform=ax.get_xaxis_transform(),
+            rotation=90,
+            ha="right",
+            va="top",
+            fontsize=FONT - 1.5,
+            color=CONTACT_COLOR,
+        )
         drew["contact"] = True
     repaired_mask = getattr(recordings, "repaired_mask", None)
     if callable(repaired_mask):
@@ -161,8 +221,10 @@ def _draw_trial(ax: plt.Axes, recordings: Recordings, row: Any, lowpass: Lowpass
     ax.yaxis.set_major_locator(MaxNLocator(3))
     head = f"{_label(p, tr)} · {status}" + (" · resampled" if bool(row.resampled) else "")
     reason = str(row.reason) if isinstance(row.reason, str) and row.reason else ""
-    if status == "selected" and pd.notna(row.contact_speed):
+    if status == "selected" and end.kind == "contact" and pd.notna(row.contact_speed):
         reason = f"contact speed {row.contact_speed:.3f} m/s"
+    elif status == "selected" and pd.notna(row.duration) and pd.notna(row.pv):
+        reason = f"duration {row.duration:.2f} s · PV {row.pv:.3f} m/s"
     lines = [_short(head, LINE_CHARS, 1), *(_short(reason).split("\n") if reason else [])]
     color = STATUS_COLORS.get(status, "k")
     ax.set_title("\n".join(lines), fontsize=FONT, color=color, loc="left", pad=2, linespacing=1.15)
@@ -189,17 +251,21 @@ def plot_segmentation_pages(
     rows: int = PAGE_ROWS,
     cols: int = PAGE_COLS,
     max_pages: int | None = None,
+    start: StartRule | None = None,
+    end: EndRule | None = None,
 ) -> list[plt.Figure]:
     """The segmentation of every trial (or of ``keys``): pages of small multiples, one panel per trial.
 
-    Each panel: the speed (m/s) against time (s) over the whole recording (grey; black up to contact: the
-    approach as the analysis differentiated it, after the run's low-pass filter), the onset threshold
-    (dotted), the onset (dashed) and the first contact sample (solid) as vertical lines, the analysed
-    segment (onset to the last sample before contact) shaded, repaired samples crossed (when the recordings
-    have ``repaired_mask``), and in the title the ids, the status (selected, excluded, invalid: red and
-    framed), "resampled" for a trial resampled onto the uniform grid, and the reason, shortened (the full
-    reason is in the feature table and results.json). Trials in natural order of participant and trial;
-    one legend a page.
+    Each panel: the speed (m/s) against time (s) over the whole recording (grey; black: the speed as the
+    analysis differentiated it, after the run's low-pass filter: up to contact for the paper's end, up to
+    the end sample for an event or height end, the whole trial for an offset end), the run's onset
+    threshold (dotted; for a relative threshold, computed from the trial's peak), the offset threshold
+    when it differs (dash-dot), the onset (dashed) and the end sample (solid, labelled by what ended it:
+    contact, offset, event or height) as vertical lines, the analysed segment (onset to the last sample
+    before the end) shaded, repaired samples crossed (when the recordings have ``repaired_mask``), and in
+    the title the ids, the status (selected, excluded, invalid: red and framed), "resampled" for a trial
+    resampled onto the uniform grid, and the reason, shortened (the full reason is in the feature table and
+    results.json). Trials in natural order of participant and trial; one legend a page.
 
     Parameters
     ----------
@@ -218,6 +284,12 @@ def plot_segmentation_pages(
         Panels of a page (dimensionless).
     max_pages : int or None
         The most pages drawn (dimensionless); None: all.
+    start : StartRule or None
+        The run's start rule (speeds in m/s); None: ``features.attrs["start"]`` when there, else the
+        paper's (0.05 m/s).
+    end : EndRule or None
+        The run's end rule (speeds in m/s, heights in m); None: ``features.attrs["end"]`` when there, else
+        the paper's (contact).
 
     Returns
     -------
@@ -226,6 +298,9 @@ def plot_segmentation_pages(
     """
     if lowpass is None:
         lowpass = features.attrs.get("lowpass")
+    start = start if start is not None else features.attrs.get("start", PAPER_START)
+    end = end if end is not None else features.attrs.get("end", PAPER_END)
+    rules = "" if start == PAPER_START and end.kind == "contact" else f" Rules: start {start.text()}, end {end.text()}."
     table = features.assign(participant=features["participant"].astype(str), trial=features["trial"].astype(str))
     table = table.set_index(["participant", "trial"], drop=False)
     if keys is None:
@@ -247,11 +322,13 @@ def plot_segmentation_pages(
         head = textwrap.wrap(
             f"Segmentation, page {page + 1} of {n_pages}: {_label(*chunk[0])}"
             + (f" to {_label(*chunk[-1])} ({len(chunk)} trials)" if len(chunk) > 1 else "")
-            + ". Titles: ids, status (selected green, excluded black, invalid red and framed), reason (shortened;"
+            + "."
+            + rules
+            + " Titles: ids, status (selected green, excluded black, invalid red and framed), reason (shortened;"
             " in full in results.json).",
             int(width * 72 / (HEAD_FONT * 0.55)),
         )
-        handles = [None] * 7  # the most entries a legend has: the room kept for it
+        handles = [None] * 8  # the most entries a legend has: the room kept for it
         top = 0.08 + LINE_IN * (len(head) + -(-len(handles) // legend_cols)) + TOP_IN
         height = PANEL_H * rows + top + BOTTOM_IN
         fig, axs = plt.subplots(rows, cols, figsize=(width, height), squeeze=False)
@@ -268,7 +345,7 @@ def plot_segmentation_pages(
             if i >= len(chunk):
                 ax.axis("off")
                 continue
-            for k, v in _draw_trial(ax, recordings, table.loc[chunk[i]], lowpass).items():
+            for k, v in _draw_trial(ax, recordings, table.loc[chunk[i]], lowpass, start, end).items():
                 drew[k] = drew.get(k, False) or v
         last = {j: max(i for i in range(len(chunk)) if i % cols == j) for j in range(min(cols, len(chunk)))}
         for i, ax in enumerate(axs.flat[: len(chunk)]):
@@ -278,7 +355,7 @@ def plot_segmentation_pages(
                 ax.set_ylabel("speed (m/s)", fontsize=FONT, labelpad=1)
         fig.text(0.08 / width, 1 - 0.06 / height, "\n".join(head), fontsize=HEAD_FONT, ha="left", va="top")
         fig.legend(
-            handles=_legend(drew),
+            handles=_legend(drew, start, end),
             loc="upper left",
             bbox_to_anchor=(0.04 / width, 1 - (0.1 + LINE_IN * len(head)) / height),
             ncol=legend_cols,
@@ -293,17 +370,52 @@ def plot_segmentation_pages(
     return figs
 
 
-def _legend(drew: dict[str, bool]) -> list:
+#: The end sample's label in a panel, by end rule.
+_END_MARKS = {
+    "contact": "contact",
+    "offset": "offset",
+    "event": "event",
+    "height-above": "height",
+    "height-below": "height",
+}
+
+
+def _end_label(end: EndRule) -> str:
+    """The legend's name of the end sample."""
+    if end.kind == "contact":
+        return "first contact sample"
+    if end.kind == "offset":
+        return "offset (end)"
+    if end.kind == "event":
+        return f"event {end.label} (end)"
+    return f"height {'above' if end.kind == 'height-above' else 'below'} {end.height:g} m (end)"
+
+
+def _threshold_label(th: Any, what: str) -> str:
+    if th.fraction is None:
+        return f"{what} threshold {th.speed:g} m/s"
+    return f"{what} threshold {th.text()} of the peak"
+
+
+def _legend(drew: dict[str, bool], start: StartRule = PAPER_START, end: EndRule = PAPER_END) -> list:
     """The legend's entries of a page: the lines every panel has, and what some panel drew."""
+    analysed = {"contact": "speed before contact", "offset": "speed"}.get(end.kind, "speed before the end")
     handles = [
-        Line2D([], [], color="k", lw=0.9, label="speed before contact (as analysed)"),
+        Line2D([], [], color="k", lw=0.9, label=f"{analysed} (as analysed)"),
         Line2D([], [], color="0.65", lw=0.7, label="speed, whole recording"),
-        Line2D([], [], color="0.45", lw=0.6, ls=":", label=f"onset threshold {ONSET_SPEED:g} m/s"),
     ]
+    if start.kind == "speed":
+        label = _threshold_label(start.threshold, "onset")
+        if end.kind == "offset" and end.offset_threshold(start) == start.threshold:
+            label = label.replace("onset threshold", "onset and offset threshold")
+        handles.append(Line2D([], [], color="0.45", lw=0.6, ls=":", label=label))
+    if drew.get("offset_threshold"):
+        th = end.offset_threshold(start)
+        handles.append(Line2D([], [], color="0.45", lw=0.6, ls="-.", label=_threshold_label(th, "offset")))
     if drew.get("onset"):
         handles.append(Line2D([], [], color=ONSET_COLOR, lw=1.0, ls="--", label="onset"))
     if drew.get("contact"):
-        handles.append(Line2D([], [], color=CONTACT_COLOR, lw=1.0, label="first contact sample"))
+        handles.append(Line2D([], [], color=CONTACT_COLOR, lw=1.0, label=_end_label(end)))
     if drew.get("segment"):
         handles.append(Patch(color=SEGMENT_COLOR, alpha=0.13, lw=0, label="analysed segment"))
     if drew.get("repaired"):

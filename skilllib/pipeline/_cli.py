@@ -32,18 +32,12 @@ from .. import __version__
 
 def _setting(text: str) -> dict[str, float]:
     """``fc=10`` or ``fc=10,amp_th=0.1,padlevel=4`` (a bare number is fc) -> a dict of SPARC parameters."""
-    out: dict[str, float] = {}
-    for part in text.split(","):
-        key, sep, value = part.partition("=")
-        key, value = (key.strip(), value.strip()) if sep else ("fc", key.strip())
-        key = key.replace("-", "_")
-        if key not in ("fc", "amp_th", "padlevel"):
-            raise argparse.ArgumentTypeError(f"{text!r}: unknown SPARC parameter {key!r} (use fc, amp_th, padlevel)")
-        try:
-            out[key] = int(value) if key == "padlevel" else float(value)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{text!r}: {key} = {value!r} is not a number") from None
-    return out
+    from ..task import parse_setting
+
+    try:
+        return parse_setting(text)
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
 
 
 def _columns(text: str) -> dict[str, str]:
@@ -160,15 +154,62 @@ def _parser() -> argparse.ArgumentParser:
         help="for a folder: a regular expression with groups (?P<participant>...) and (?P<trial>...) "
         "matched against each file's name",
     )
+    g.add_argument(
+        "--contact-below",
+        action="store_true",
+        default=None,
+        help="the contact channel is in contact below its threshold (a load cell that goes negative under load)",
+    )
+    t = r.add_argument_group("the task: segmentation, selection, features (chapter 15; docs/cli.md: Tasks)")
+    t.add_argument(
+        "--task",
+        metavar="FILE|PRESET",
+        help="a task file (.toml), a results.json to run again, or a preset (paper); the options below override it",
+    )
+    t.add_argument(
+        "--start",
+        metavar="RULE",
+        help="where a movement starts: speed:0.05 (m/s, the default), speed:5%% (of the peak speed) or event:LABEL",
+    )
+    t.add_argument(
+        "--end",
+        metavar="RULE",
+        help="where it ends: contact (the default), offset (speed back below the start threshold), offset:0.05, "
+        "offset:5%%, event:LABEL, height-above:M or height-below:M (m, on the up axis)",
+    )
+    t.add_argument(
+        "--hold",
+        type=float,
+        metavar="S",
+        help="how long the speed stays below the offset threshold, and the shortest rest between movements "
+        "(s; default 0.1)",
+    )
+    t.add_argument(
+        "--split",
+        action="store_true",
+        default=None,
+        help="a recording holds several movements: split it at rests (or at start/end events)",
+    )
+    t.add_argument(
+        "--select",
+        action="append",
+        metavar="none|FEATURE=LO:HI",
+        help="which trials are clustered: windows on per-trial features, repeatable (default "
+        "contact_speed=0.3:0.7 when the end is contact, else none)",
+    )
+    t.add_argument(
+        "--features",
+        metavar="NAME,NAME[,...]",
+        help="the clustering features (default pv,sparc; also ldlj, duration, contact_speed, peak_acc, path_length)",
+    )
     r.add_argument(
         "--lowpass",
-        default="auto",
         metavar="auto|none|HZ",
         help="low-pass filter of the positions before differentiating: auto (default: Winter's residual "
         "analysis, only when the noise needs it), none, or a cut-off in Hz",
     )
-    r.add_argument("--k", type=int, default=DEFAULT_K, help=f"number of clusters (default {DEFAULT_K})")
-    r.add_argument("--robot", default="simple6", choices=ROBOT_NAMES, help="robot arm (default simple6)")
+    r.add_argument("--k", type=int, help=f"number of clusters (default {DEFAULT_K})")
+    r.add_argument("--robot", choices=ROBOT_NAMES, help="robot arm (default simple6)")
     r.add_argument(
         "--qd-max",
         type=float,
@@ -194,14 +235,12 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument(
         "--scaling",
         choices=("raw", "standard"),
-        default="raw",
-        help="features as they are (the paper) or standardised before K-means",
+        help="features as they are (the paper, the default) or standardised before K-means",
     )
-    r.add_argument("--seed", type=_seed, default=0, help="random_state of K-means, 0 .. 2**32-1 (default 0)")
+    r.add_argument("--seed", type=_seed, help="random_state of K-means, 0 .. 2**32-1 (default 0)")
     r.add_argument(
         "--fc",
         type=float,
-        default=DEFAULT_FC,
         metavar="HZ",
         help=f"SPARC's maximum cut-off frequency in Hz (default {DEFAULT_FC:g}, the paper's 0-20 Hz; "
         "below the Nyquist frequency of the recordings)",
@@ -209,14 +248,12 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument(
         "--amp-th",
         type=float,
-        default=DEFAULT_AMP_TH,
         metavar="FRACTION",
         help=f"SPARC's amplitude threshold (default {DEFAULT_AMP_TH:g})",
     )
     r.add_argument(
         "--padlevel",
         type=int,
-        default=DEFAULT_PADLEVEL,
         metavar="N",
         help=f"SPARC's zero padding, nfft = 2**(ceil(log2 N) + padlevel) (default {DEFAULT_PADLEVEL})",
     )
@@ -311,6 +348,7 @@ def _run_analysis(args: argparse.Namespace) -> int:
         "contact_threshold": args.contact_threshold,
         "contact_height": args.contact_height,
         "name_pattern": args.name_pattern,
+        "contact_below": args.contact_below,
     }
     read_options.update(
         {k: v for k, v in (("max_gap_s", args.max_gap), ("fill", args.fill)) if v is not None}
@@ -319,6 +357,13 @@ def _run_analysis(args: argparse.Namespace) -> int:
         result = run(
             args.data,
             args.out,
+            task=args.task,
+            start=args.start,
+            end=args.end,
+            hold=args.hold,
+            split=args.split,
+            select=args.select,
+            features=args.features,
             k=args.k,
             robot=args.robot,
             qd_max=qd_max,

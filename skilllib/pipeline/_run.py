@@ -15,7 +15,7 @@ import math
 import os
 import warnings
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -25,7 +25,19 @@ import pandas as pd
 from .. import __version__
 from .. import prototypes as pt
 from ..datasets import cohort_path
-from ..features import CONTACT_WINDOW, ONSET_SPEED, Lowpass, parse_lowpass, run_lowpass, segment, select, trial_features
+from ..features import (
+    PAPER_START,
+    EndRule,
+    Lowpass,
+    StartRule,
+    Window,
+    apply_selection,
+    parse_lowpass,
+    run_lowpass,
+    segment,
+    select,
+    trial_features,
+)
 from ..prototypes import SparcSensitivity, json_value, sparc_sensitivity
 from ..recordings import Recordings, load_recordings
 from ..robot import (
@@ -37,7 +49,7 @@ from ..robot import (
     transfer,
     transfer_block,
 )
-from ..smoothness import DEFAULT_AMP_TH, DEFAULT_FC, DEFAULT_PADLEVEL
+from ..task import PAPER_TASK, Task, TaskError, load_task
 from ._output import check_output, output_folder, write_json_atomic
 from ._trials_file import in_json, trials_block, write_trials
 
@@ -81,6 +93,7 @@ class PipelineRun:
     messages: list[str] = field(default_factory=list)
     sensitivity: SparcSensitivity | None = None
     assessments: list[Assessment] = field(default_factory=list)
+    task: Task = PAPER_TASK
 
 
 def _is_shipped_cohort(given: Any) -> bool:
@@ -252,23 +265,137 @@ def _check_nyquist(params: dict[str, float], fs: float) -> None:
         )
 
 
+#: What a task's name gains when options given with it change it (results.json ``task.name``).
+OVERRIDDEN = " + options"
+
+#: The reading options of a task (:attr:`skilllib.task.Task.read`) and the keywords of
+#: :func:`skilllib.recordings.load_recordings` they are passed as.
+READ_KEYWORDS = {"max_gap": "max_gap_s"}
+
+
+def _load_options(read: Mapping[str, Any]) -> dict[str, Any]:
+    """The task's reading options as keywords of :func:`skilllib.recordings.load_recordings`."""
+    return {READ_KEYWORDS.get(k, k): v for k, v in read.items() if v is not None}
+
+
+def _onset_text(start: StartRule) -> str:
+    th = start.threshold
+    if start.kind == "event":
+        return "onset speed"
+    return f"{th.speed:g} m/s onset speed" if th.fraction is None else f"onset speed ({th.text()} of the peak)"
+
+
+def resolve_task(
+    task: Task | str | Path | None = None,
+    *,
+    read_options: Mapping[str, Any] | None = None,
+    random_state: int | None = None,
+    select: Sequence[Window | str] | str | None = None,
+    start: StartRule | str | None = None,
+    end: EndRule | str | None = None,
+    hold: float | None = None,
+    **options: Any,
+) -> Task:
+    """The task a run carries out: ``task`` (a :class:`~skilllib.task.Task`, a task file, a preset name or a
+    results.json; None: the paper's) with the options given here over it (None: the task's).
+
+    Values are taken as given; :func:`run` checks them (:class:`OptionError`). Texts are read as on the
+    command line: ``start="speed:5%"``, ``end="offset"``, ``select=["none"]``, ``features="pv,ldlj"``.
+
+    Parameters
+    ----------
+    task : Task, str, pathlib.Path or None
+        The base task.
+    read_options : mapping, optional
+        Reading options (:func:`skilllib.recordings.load_recordings`; ``max_gap_s`` in s).
+    random_state : int, optional
+        K-means' seed.
+    select : sequence of Window or str, or str, optional
+        Selection windows (``FEATURE=LO:HI``) or ``none``.
+    start, end : StartRule, EndRule or str, optional
+        The segmentation rules or their texts.
+    hold : float, optional
+        The offset's hold and the shortest rest between movements (s).
+    **options : Any
+        ``k``, ``robot``, ``qd_max`` (rad/s), ``qdd_max`` (rad/s^2), ``tau_max`` (N m), ``scaling``, ``fc`` (Hz),
+        ``amp_th``, ``padlevel``, ``sensitivity``, ``lowpass``, ``split``, ``features``.
+
+    Returns
+    -------
+    Task
+        The resolved task.
+    """
+    from ..features import RuleError, SelectionError, parse_end, parse_features, parse_selection, parse_start
+
+    try:
+        base = task if isinstance(task, Task) else PAPER_TASK if task is None else load_task(task)
+        changes: dict[str, Any] = {}
+        read = dict(base.read)
+        for key, v in (read_options or {}).items():
+            if v is not None:
+                read[{v2: k2 for k2, v2 in READ_KEYWORDS.items()}.get(key, key)] = v
+        changes["read"] = read
+        if random_state is not None:
+            changes["seed"] = random_state
+        for key in ("k", "robot", "qd_max", "qdd_max", "tau_max", "scaling", "fc", "amp_th", "padlevel"):
+            if options.get(key) is not None:
+                changes[key] = options[key]
+        if options.get("sensitivity") is not None:
+            changes["sensitivity"] = tuple(options["sensitivity"])
+        if options.get("lowpass") is not None:
+            changes["lowpass"] = options["lowpass"]
+        if options.get("split") is not None:
+            changes["split"] = bool(options["split"])
+        if options.get("features") is not None:
+            changes["features"] = parse_features(options["features"])
+        if select is not None:
+            items = [select] if isinstance(select, (str, Window)) else list(select)
+            changes["selection"] = (
+                tuple(items) if all(isinstance(w, Window) for w in items) else parse_selection(map(str, items))
+            )
+        if start is not None:
+            changes["start"] = start if isinstance(start, StartRule) else parse_start(start)
+        new_end = base.end if end is None else end if isinstance(end, EndRule) else parse_end(end)
+        changes["end"] = new_end if hold is None else replace(new_end, hold_s=float(hold))
+        if hold is not None and not (np.isfinite(float(hold)) and float(hold) >= 0):
+            raise OptionError(f"hold must be a time of at least 0 s, got {hold!r}")
+        job = replace(base, **changes)
+        if job != base and not base.name.endswith(OVERRIDDEN):  # the task as given, then changed by options
+            job = replace(job, name=base.name + OVERRIDDEN)
+    except (TaskError, RuleError, SelectionError) as e:
+        raise OptionError(str(e)) from None
+    if job.start.kind == "event" and job.end.kind == "offset" and job.end.threshold is None:
+        raise OptionError(
+            "--end offset takes the start's speed threshold, but the start is an event: give the offset's "
+            "threshold (--end offset:0.05 or offset:5%)"
+        )
+    return job
+
+
 def run(
     data: str | Path | pd.DataFrame | Recordings | None = None,
     out: str | Path | None = None,
     *,
-    k: int = pt.DEFAULT_K,
-    robot: str = "simple6",
+    task: Task | str | Path | None = None,
+    k: int | None = None,
+    robot: str | None = None,
     qd_max: Sequence[float] | float | None = None,
     qdd_max: Sequence[float] | float | None = None,
     tau_max: Sequence[float] | float | None = None,
-    scaling: str = "raw",
-    random_state: int = 0,
-    fc: float = DEFAULT_FC,
-    amp_th: float = DEFAULT_AMP_TH,
-    padlevel: int = DEFAULT_PADLEVEL,
+    scaling: str | None = None,
+    random_state: int | None = None,
+    fc: float | None = None,
+    amp_th: float | None = None,
+    padlevel: int | None = None,
     sensitivity: Sequence[Mapping[str, float]] | None = None,
-    lowpass: str | float | Lowpass | None = "auto",
+    lowpass: str | float | Lowpass | None = None,
     read_options: Mapping[str, Any] | None = None,
+    start: StartRule | str | None = None,
+    end: EndRule | str | None = None,
+    hold: float | None = None,
+    split: bool | None = None,
+    select: Sequence[Window | str] | str | None = None,
+    features: Sequence[str] | str | None = None,
     progress: Progress = _no_progress,
     write_figures: bool = True,
     workers: int | None = None,
@@ -311,6 +438,10 @@ def run(
         :class:`~skilllib.recordings.Recordings`; None for the book's synthetic cohort.
     out : str, pathlib.Path or None
         The output folder for results.json and the figures (text); None to write nothing.
+    task : Task, str, pathlib.Path or None
+        The task (:mod:`skilllib.task`): a Task, a TOML task file, a preset name (``paper``) or a results.json
+        to run again; None: the paper's. Every option below that is None takes the task's value; one that is
+        given overrides it. results.json ``task`` records the resolved task.
     k : int
         Number of clusters (dimensionless; the paper's 6).
     robot : str
@@ -339,6 +470,22 @@ def run(
     read_options : mapping of str to Any, optional
         How to read ``data`` (:func:`skilllib.recordings.load_recordings`: columns, units, up axis,
         marker, contact channel, threshold and height in m, name pattern, separator, time unit).
+    start : StartRule or str, optional
+        Where a movement starts (``speed:0.05`` m/s, the paper; ``speed:5%``; ``event:LABEL``).
+    end : EndRule or str, optional
+        Where it ends (``contact``, the paper; ``offset``, ``offset:0.05`` m/s, ``offset:5%``,
+        ``event:LABEL``, ``height-above:M``, ``height-below:M`` in m).
+    hold : float, optional
+        How long the speed stays below the offset threshold, and the shortest rest between movements (s).
+    split : bool, optional
+        Whether each recording holds several movements, split at rests or events
+        (:func:`skilllib.features.split_movements`).
+    select : sequence of Window or str, or str, optional
+        Selection windows ``FEATURE=LO:HI`` or ``none`` (default: the paper's contact-speed window when the
+        end is contact, no window otherwise).
+    features : sequence of str or str, optional
+        The clustering features (``pv,sparc``, the paper; any columns of
+        :data:`skilllib.features.FEATURE_UNITS`).
     progress : callable
         ``progress(items, description)`` wrapping the long loops, e.g. tqdm; by default none.
     write_figures : bool
@@ -365,14 +512,62 @@ def run(
     OutputError
         For an output folder that cannot be used.
     """
-    arm = check_options(k, robot, qd_max, scaling, random_state, qdd_max, tau_max)
-    params = check_sparc_params(fc, amp_th, padlevel)
-    variants = [check_sparc_params(**{**params, **dict(v)}) for v in _settings(sensitivity)]
+    given = isinstance(lowpass, Lowpass)
+    job = resolve_task(
+        task,
+        k=k,
+        robot=robot,
+        qd_max=qd_max,
+        qdd_max=qdd_max,
+        tau_max=tau_max,
+        scaling=scaling,
+        random_state=random_state,
+        fc=fc,
+        amp_th=amp_th,
+        padlevel=padlevel,
+        sensitivity=sensitivity,
+        lowpass=None if given else lowpass,
+        read_options=read_options,
+        start=start,
+        end=end,
+        hold=hold,
+        split=split,
+        select=select,
+        features=features,
+    )
+    arm = check_options(job.k, job.robot, job.qd_max, job.scaling, job.seed, job.qdd_max, job.tau_max)
+    params = check_sparc_params(job.fc, job.amp_th, job.padlevel)
+    variants = [check_sparc_params(**{**params, **dict(v)}) for v in _settings(job.sensitivity)]
+
+    def limit(v: Any) -> Any:  # one number for every joint, or one per joint, as plain floats
+        return None if v is None else float(v) if np.ndim(v) == 0 else tuple(float(x) for x in np.ravel(v))
+
+    job = replace(  # checked: recorded as plain numbers (results.json task)
+        job,
+        k=int(job.k),
+        seed=int(job.seed),
+        **params,
+        sensitivity=tuple(dict(v) for v in _settings(job.sensitivity)),
+        qd_max=limit(job.qd_max),
+        qdd_max=limit(job.qdd_max),
+        tau_max=limit(job.tau_max),
+    )
+    lowpass = lowpass if given else job.lowpass
     if not isinstance(lowpass, Lowpass):
         try:
             lowpass = parse_lowpass(lowpass)
         except ValueError as e:
             raise OptionError(str(e)) from None
+    paper_rules = job.start == PAPER_START and job.end.kind == "contact" and not job.split
+    if (workers or scheduler) and not paper_rules:
+        raise OptionError(
+            "a Dask cluster (--workers, --scheduler) computes the paper's segmentation only (start speed:0.05, "
+            f"end contact, no --split); this task has start {job.start.text()}, end {job.end.text()}"
+            + (", --split" if job.split else "")
+        )
+    read_options = _load_options(job.read)
+    if job.end.kind != "contact" and read_options.get("contact_height") is None:
+        read_options["contact_height"] = -math.inf  # no contact signal is needed: the end rule does not read it
     if workers is not None and not (
         isinstance(workers, (int, np.integer)) and not isinstance(workers, bool) and 1 <= workers <= _max_workers()
     ):
@@ -381,12 +576,12 @@ def run(
         )
     if out is not None:  # everything about the output folder is checked before anything is computed
         out = check_output(out, inputs=(data,) if isinstance(data, (str, Path)) else ())
-    features = None
+    table = None
     if workers or scheduler:
         from ..features import cluster_features
 
         try:
-            recordings, features = cluster_features(
+            recordings, table = cluster_features(
                 data,
                 workers,
                 scheduler,
@@ -397,27 +592,29 @@ def run(
             )
         except ValueError as e:  # an option the cluster path does not take
             raise OptionError(str(e)) from None
-        filt = features.attrs["lowpass"]
+        filt = table.attrs["lowpass"]
     else:
-        recordings = load_recordings(DEFAULT_DATA if data is None else data, **dict(read_options or {}))
+        recordings = load_recordings(DEFAULT_DATA if data is None else data, **read_options)
+        if job.split:
+            from ..features import split_movements
+
+            recordings = split_movements(recordings, job.start, job.end, hold_s=job.hold)
     for p in (params, *variants):
         _check_nyquist(p, recordings.fs)
     try:
-        filt = filt if features is not None else run_lowpass(recordings, lowpass)
+        filt = filt if table is not None else run_lowpass(recordings, lowpass, end=job.end)
     except ValueError as e:  # a cut-off too high for the sampling rate
         raise OptionError(str(e)) from None
     result = compute(
         recordings,
         data,
         arm=arm,
-        k=k,
-        scaling=scaling,
-        random_state=random_state,
+        task=job,
         params=params,
         variants=variants,
         lowpass=filt,
         progress=progress,
-        features=features,
+        features=table,
     )
     if out is not None:
         with output_folder(out) as folder:
@@ -435,19 +632,22 @@ def compute(
     data: Any,
     *,
     arm: Arm,
-    k: int,
-    scaling: str,
-    random_state: int,
+    task: Task,
     params: dict[str, float],
     variants: list[dict[str, float]],
     lowpass: Lowpass,
     progress: Progress = _no_progress,
     features: pd.DataFrame | None = None,
 ) -> PipelineRun:
-    """The pipeline's computation on validated ``recordings`` with checked options (see :func:`run`);
-    ``features``: their feature table when computed already (on a cluster)."""
+    """The pipeline's computation on validated ``recordings`` with checked options (see :func:`run`;
+    ``task``: the resolved task); ``features``: their feature table when computed already (on a cluster)."""
+    k, scaling, random_state = task.k, task.scaling, task.seed
+    windows = task.resolved_selection()
     if features is None:
-        features = trial_features(recordings, sparc_params=params, lowpass=lowpass, progress=progress)
+        features = trial_features(
+            recordings, sparc_params=params, lowpass=lowpass, progress=progress, start=task.start, end=task.end
+        )
+    features = apply_selection(features, windows)
     selected = select(features)
     results: dict[str, Any] = {
         "schema_version": SCHEMA_VERSION,
@@ -464,7 +664,11 @@ def compute(
         },
         "sparc_params": {"fc": params["fc"], "amp_th": params["amp_th"], "padlevel": int(params["padlevel"])},
         "filter": lowpass.to_dict(),
-        "contact_speed_window": list(CONTACT_WINDOW),
+        "contact_speed_window": next(
+            ([w.lo, w.hi] for w in windows if w.feature == "contact_speed" and None not in (w.lo, w.hi)), None
+        ),
+        "selection": [w.text() for w in windows],
+        "task": task.to_dict(),
         **trials_block(features),
         "n_selected": len(selected),
     }
@@ -472,7 +676,7 @@ def compute(
     if skipped is not None:  # a folder of trial files: each file is one trial (read or invalid) or skipped
         results["dataset"]["n_files"] = len(features) + len(skipped)
         results["dataset"]["skipped_files"] = [{"path": q.path, "reason": q.reason} for q in skipped]
-    result = PipelineRun(results=results, recordings=recordings, features=features)
+    result = PipelineRun(results=results, recordings=recordings, features=features, task=task)
     if not np.isfinite(recordings.fs):
         result.messages.append("the sampling rate is unknown: no trial is usable to derive it from the time stamps")
     n_res = results["dataset"]["n_resampled"]
@@ -501,7 +705,7 @@ def compute(
         result.messages.append(
             f"{no_rest} of {len(features)} trials are invalid with 'no rest before onset': either the recordings "
             f"start after the movement began, or the position noise is so large that its derivative exceeds the "
-            f"{ONSET_SPEED:g} m/s onset speed; then try {hint} (chapter 13)"
+            f"{_onset_text(task.start)}; then try {hint} (chapter 13)"
         )
     if lowpass.cutoff_hz is not None:
         result.messages.append(filter_message(selected, lowpass))
@@ -520,7 +724,9 @@ def compute(
         try:
             with warnings.catch_warnings(record=True) as caught:  # a shrunk k range: a note of the run
                 warnings.simplefilter("always", UserWarning)
-                sweep = pt.silhouette_sweep(selected, scaling=scaling, random_state=random_state, progress=progress)
+                sweep = pt.silhouette_sweep(
+                    selected, scaling=scaling, random_state=random_state, progress=progress, features=task.features
+                )
         except ValueError as e:
             result.messages.append(f"{e}; no prototypes and no transfer")
         else:
@@ -552,7 +758,7 @@ def compute(
         for c in progress(list(range(k_used)), "transfer"):
             p, tr = fit.prototypes.at[c, "participant"], fit.prototypes.at[c, "trial"]
             seg = (
-                segment(recordings, p, tr, lowpass=lowpass)
+                segment(recordings, p, tr, lowpass=lowpass, start=task.start, end=task.end)
                 if isinstance(recordings, Recordings)
                 else recordings.segment(p, tr, lowpass=lowpass)
             )
@@ -563,7 +769,17 @@ def compute(
         result.messages += [  # an execution not simulated (a time scale beyond MAX_TIME_SCALE, ...) and why
             f"prototype of cluster {a.transfer.cluster}: {a.note}" for a in result.assessments if a.note
         ]
-    if variants and sweep is not None:
+    if variants and sweep is not None and "sparc" not in task.features:
+        result.messages.append(
+            f"no SPARC sensitivity analysis: the clustering features ({', '.join(task.features)}) do not include "
+            "sparc, so the clusters cannot depend on the SPARC setting"
+        )
+    elif variants and sweep is not None:
+
+        def table(p: Mapping[str, float]) -> pd.DataFrame:
+            feats = trial_features(recordings, sparc_params=p, lowpass=lowpass, start=task.start, end=task.end)
+            return apply_selection(feats, windows)
+
         result.sensitivity = sparc_sensitivity(
             recordings,
             [params, *variants],
@@ -572,6 +788,8 @@ def compute(
             random_state=random_state,
             reference=(features, sweep),
             lowpass=lowpass,
+            features=task.features,
+            table=table if isinstance(recordings, Recordings) else None,  # a cluster run: the paper's task only
         )
         results["sparc_sensitivity"] = result.sensitivity.to_dict()
     elif variants:
@@ -628,12 +846,16 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
         fg.plt.close(fig)
 
     samples = isinstance(run_.recordings, Recordings)  # not on the cluster path: the samples stay there
+    window = run_.results["contact_speed_window"]
+    window = tuple(window) if window else None
+    end = {"contact": "contact", "offset": "offset", "event": "end event"}.get(run_.task.end.kind, "height crossing")
     if (run_.features["status"] != "invalid").any():  # the data figures need at least one valid trial
-        keep(fg.plot_feature_overview(run_.features, run_.results["sparc_params"]["amp_th"]), "features")
+        amp_th = run_.results["sparc_params"]["amp_th"]
+        keep(fg.plot_feature_overview(run_.features, amp_th, window=window, end=end), "features")
         few, note = fg.few_participants(run_.features)  # one panel per participant: at most 12
         if samples:
-            keep(fg.plot_trials_by_participant(run_.recordings, few), "trials_by_participant", note)
-        keep(fg.plot_participant_features(few), "participant_features", note)
+            keep(fg.plot_trials_by_participant(run_.recordings, few, end=end), "trials_by_participant", note)
+        keep(fg.plot_participant_features(few, window=window, end=end), "participant_features", note)
         if samples:
             keep(
                 fg.plot_sparc_vs_length(run_.features, run_.recordings.fs, run_.results["sparc_params"]["amp_th"]),
@@ -641,7 +863,10 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
             )
     if samples and len(run_.features):  # each trial's segmentation (every invalid one included): PNG pages of 24
         shown, note = fg.segmentation_keys(run_.features, fg.MAX_SEGMENTATION_TRIALS)
-        for i, fig in enumerate(fg.plot_segmentation_pages(run_.recordings, run_.features, keys=shown), 1):
+        pages = fg.plot_segmentation_pages(
+            run_.recordings, run_.features, keys=shown, start=run_.task.start, end=run_.task.end
+        )
+        for i, fig in enumerate(pages, 1):
             keep(fig, f"segmentation-{i:02d}", note, save=fg.save_page)
     if run_.prototypes is not None:
         keep(fg.plot_silhouette_sweep(run_.sweep, chosen_k=run_.prototypes.k), "silhouette_sweep")

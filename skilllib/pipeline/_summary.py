@@ -19,6 +19,44 @@ if TYPE_CHECKING:
     from ._run import PipelineRun
 
 
+def _described(row: dict, features: tuple[str, ...]) -> str:
+    """A prototype by its clustering features: ``PV 0.52 m/s, SPARC -1.55`` (the paper's), ``LDLJ -9.4``."""
+    from ..features import FEATURE_UNITS
+
+    out = []
+    for f in features:
+        if f == "pv":
+            out.append(f"PV {row[f]:.2f} m/s")
+        elif f == "sparc":
+            out.append(f"SPARC {row[f]:.2f}")
+        else:
+            label, unit = FEATURE_UNITS.get(f, (f, ""))
+            out.append(f"{label} {row[f]:.3g}" + (f" {unit}" if unit else ""))
+    return ", ".join(out)
+
+
+def _task_lines(task: dict | None) -> list[str]:
+    """One line on the task when it is not the paper's: its rules, selection and features."""
+    if not task:
+        return []
+    seg, sel, clu = task["segment"], task["select"]["windows"], task["cluster"]
+    paper = (
+        seg["start"] == "speed:0.05"
+        and seg["end"] == "contact"
+        and not seg["split"]
+        and sel == ["contact_speed=0.3:0.7"]
+        and clu["features"] == ["pv", "sparc"]
+    )
+    if paper:
+        return []
+    windows = "every valid trial" if sel == "none" else " and ".join(sel)
+    split = ", several movements per recording (split)" if seg["split"] else ""
+    return [
+        f"task {task['name']}: start {seg['start']}, end {seg['end']}{split}; selected: {windows}; "
+        f"clustered on {', '.join(clu['features'])}"
+    ]
+
+
 def summary_lines(run_: PipelineRun) -> list[str]:
     """A short human summary of a run: counts, commonest reasons, k, prototypes, feasibility.
 
@@ -37,13 +75,17 @@ def summary_lines(run_: PipelineRun) -> list[str]:
     counts = f["status"].value_counts()
     fs = run_.recordings.fs
     rate = f"at {fs:.4g} Hz (from the time stamps)" if np.isfinite(fs) else "at an unknown sampling rate"
-    lines = _files_lines(run_.results["dataset"]) + [
-        f"trials read: {len(f)} from {run_.results['dataset']['n_participants']} participant(s) {rate}",
-        (
-            f"selected: {counts.get('selected', 0)}, excluded: {counts.get('excluded', 0)}, "
-            f"invalid: {counts.get('invalid', 0)}"
-        ),
-    ]
+    lines = (
+        _files_lines(run_.results["dataset"])
+        + _task_lines(run_.results.get("task"))
+        + [
+            f"trials read: {len(f)} from {run_.results['dataset']['n_participants']} participant(s) {rate}",
+            (
+                f"selected: {counts.get('selected', 0)}, excluded: {counts.get('excluded', 0)}, "
+                f"invalid: {counts.get('invalid', 0)}"
+            ),
+        ]
+    )
     if "repairs" in f.columns and (f["repairs"] != "").any():
         rep = f["repairs"] != ""
         lines.append(
@@ -78,7 +120,7 @@ def summary_lines(run_: PipelineRun) -> list[str]:
             peak = f"{np.nanmax(tr.peak_abs_qd):.2f}" if np.isfinite(tr.peak_abs_qd).any() else "n/a"
             lines.append(
                 f"  cluster {c}: size {fit.sizes[c]}, prototype participant {p['participant']} trial "
-                f"{p['trial']} (PV {p['pv']:.2f} m/s, SPARC {p['sparc']:.2f}); "
+                f"{p['trial']} ({_described(p, fit.features)}); "
                 f"peak |qd| {peak} rad/s, {verdict}"
             )
         n_ok = sum(a.dynamics.feasible for a in run_.assessments)

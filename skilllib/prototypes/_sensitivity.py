@@ -8,7 +8,9 @@ silhouette sweep, K-means prototypes (:mod:`skilllib.features`, :mod:`skilllib.p
 setting and compares every setting with the first one, the reference: which trials' SPARC changes and by
 how much, how many bands the cap ends, the adjusted Rand index between the two k-cluster partitions
 (Hubert & Arabie 1985) and which prototype trials survive. The selection (contact speed) does not
-depend on SPARC, so every setting clusters the same trials.
+depend on SPARC, so every setting clusters the same trials. Every setting clusters the same features,
+by default the paper's (PV, SPARC); a feature set without ``sparc`` is refused (ValueError): its
+clusters could not change with the SPARC setting.
 
 The chapters (1 and 3) and ``python -m skilllib run --sensitivity`` call it.
 """
@@ -16,7 +18,7 @@ The chapters (1 and 3) and ``python -m skilllib run --sensitivity`` call it.
 from __future__ import annotations
 
 import warnings
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -94,10 +96,13 @@ class SparcSensitivity:
         The clustering under each SPARC setting, the reference first.
     k : int
         The number of clusters (dimensionless).
+    features : tuple of str
+        The clustering features of every setting (text); ``sparc`` among them.
     """
 
     runs: list[SettingRun]
     k: int
+    features: tuple[str, ...] = pt.FEATURES
 
     @property
     def reference(self) -> SettingRun:
@@ -162,8 +167,9 @@ class SparcSensitivity:
         return pd.DataFrame.from_dict(rows, orient="index").rename_axis(f"vs {ref.label}")
 
     def prototypes(self) -> pd.DataFrame:
-        """The prototypes of every setting (clusters numbered by centre PV) with ``kept``: the same trial
-        is a prototype of the reference too."""
+        """The prototypes of every setting (clusters numbered by centre PV, or the first feature; columns
+        participant, trial, the features) with ``kept``: the same trial is a prototype of the reference
+        too."""
         ref_ids = self.reference.prototype_ids()
         parts = {}
         for run in self.runs:
@@ -177,7 +183,8 @@ class SparcSensitivity:
         """JSON-ready: ``k``, ``settings`` (one per run: ``params``, ``n_selected``, ``n_capped``,
         ``silhouette`` {k: score}, ``prototypes`` [{cluster, participant, trial, pv, sparc, kept}] and, for
         all but the reference, ``vs_reference`` {n_sparc_changed, mean_abs_sparc_change,
-        max_abs_sparc_change, ari, prototypes_kept})."""
+        max_abs_sparc_change, ari, prototypes_kept}). With other ``features`` the prototypes hold those
+        in place of pv, sparc, in their order."""
         comp = self.comparison()
         protos = self.prototypes()
         out = []
@@ -195,8 +202,7 @@ class SparcSensitivity:
                         "cluster": int(c),
                         "participant": json_value(r["participant"]),
                         "trial": json_value(r["trial"]),
-                        "pv": float(r["pv"]),
-                        "sparc": float(r["sparc"]),
+                        **{f: float(r[f]) for f in self.features},
                         "kept": bool(r["kept"]),
                     }
                     for c, r in p.iterrows()
@@ -254,6 +260,8 @@ def sparc_sensitivity(
     k_range: tuple[int, int] = pt.K_RANGE,
     reference: tuple[pd.DataFrame, pt.SilhouetteSweep | None] | None = None,
     lowpass: Any = "auto",
+    features: Sequence[str] = pt.FEATURES,
+    table: Callable[[Mapping[str, float]], pd.DataFrame] | None = None,
 ) -> SparcSensitivity:
     """The clustering of the paper under each SPARC setting in ``settings``, compared with the first.
 
@@ -282,14 +290,39 @@ def sparc_sensitivity(
     lowpass : Any
         The positions' filter (:func:`skilllib.features.trial_features`; cut-off in Hz), the same for every
         setting (the pipeline passes the one its run chose).
+    features : sequence of str
+        The clustering features of every setting (each in its unit: ``pv`` m/s, ``sparc`` and ``ldlj``
+        dimensionless, ...), as in :func:`skilllib.prototypes.silhouette_sweep`; must include ``sparc``.
+        A ``reference`` sweep must have clustered the same features.
+    table : callable or None
+        ``table(params)``: the feature table (status set by the run's selection) under the SPARC setting
+        ``params`` (fc in Hz), for a run whose segmentation rules or selection are not the paper's (the
+        pipeline passes its own); None: :func:`~skilllib.features.trial_features` with the paper's rules
+        and contact-speed window.
 
     Returns
     -------
     SparcSensitivity
         The clustering under each setting (PV in m/s, SPARC dimensionless).
+
+    Raises
+    ------
+    ValueError
+        For no settings, an unknown SPARC parameter, features without ``sparc`` (the clusters would not
+        depend on the setting) or a ``reference`` sweep of other features.
     """
     if not settings:
         raise ValueError("no SPARC settings to compare")
+    cluster_on = pt._features(features)
+    if "sparc" not in cluster_on:
+        raise ValueError(
+            f"the clustering features {pt._names(cluster_on)} do not include sparc: the clusters cannot depend on "
+            "the SPARC setting, there is nothing to compare"
+        )
+    if reference is not None and reference[1] is not None and tuple(reference[1].features) != cluster_on:
+        raise ValueError(
+            f"the reference sweep clustered {pt._names(reference[1].features)}, not {pt._names(cluster_on)}"
+        )
     params = [complete_params(s) for s in settings]
     runs = []
     k_used = int(k)
@@ -300,13 +333,18 @@ def sparc_sensitivity(
                 k_used = min(k_used, int(sweep.ks[-1]))
             runs.append((p, feats, sweep))
             continue
-        feats = trial_features(recordings, sparc_params=p, lowpass=lowpass)
+        feats = trial_features(recordings, sparc_params=p, lowpass=lowpass) if table is None else table(p)
         sel = select(feats)
+        missing = [f for f in cluster_on if f not in sel.columns]
+        if missing:  # not a too-few-trials case: say so rather than leave fit = None
+            raise ValueError(f"the feature table lacks the clustering feature(s) {missing}")
         sweep = None
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", UserWarning)
-                sweep = pt.silhouette_sweep(sel, *k_range, scaling=scaling, random_state=random_state)
+                sweep = pt.silhouette_sweep(
+                    sel, *k_range, scaling=scaling, random_state=random_state, features=cluster_on
+                )
         except ValueError:
             pass  # too few (distinct) selected trials to cluster: the run says so through fit = None
         if sweep is not None:
@@ -321,4 +359,4 @@ def sparc_sensitivity(
     ids = [tuple(map(tuple, r.selected[["participant", "trial"]].to_numpy())) for r in out]
     if any(i != ids[0] for i in ids[1:]):  # cannot happen: the selection does not use SPARC
         raise RuntimeError("the settings selected different trials")
-    return SparcSensitivity(out, k_used)
+    return SparcSensitivity(out, k_used, cluster_on)

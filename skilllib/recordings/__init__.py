@@ -14,8 +14,9 @@ import lazy_loader as _lazy
 __getattr__, __dir__, __all__ = _lazy.attach(
     __name__,
     submod_attrs={
-        "_c3d": ["read_c3d"],
+        "_c3d": ["c3d_events", "read_c3d"],
         "_columns": ["COLUMNS", "ID_COLUMNS", "POSITION_COLUMNS"],
+        "_cut": ["cut_trials", "piece_name"],
         "_checks": [
             "check_corpus_units",
             "corpus_rate",
@@ -51,6 +52,8 @@ __getattr__, __dir__, __all__ = _lazy.attach(
         "_nexus": ["is_nexus", "NEXUS_SECTIONS", "read_nexus"],
         "_parquet": ["is_parquet", "parquet_files", "read_parquet"],
         "_recordings": [
+            "EVENT_COLUMNS",
+            "events_frame",
             "format_recordings",
             "natural_key",
             "read_recordings",

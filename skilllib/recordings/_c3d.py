@@ -59,15 +59,23 @@ Rules of :func:`read_c3d` (one file = one trial):
 
   - an analog channel (``ANALOG:LABELS``) of that name: point frame ``i`` is in contact when any of its
     analog samples (the ``m`` = analog rate / point rate samples recorded during the frame) is above
-    the threshold: ``contact_threshold`` in the channel's units (scale and offset of the file applied)
+    the threshold (with ``contact_below``: below it, for a load cell whose channel goes negative under
+    load): ``contact_threshold`` in the channel's units (scale and offset of the file applied)
     when given, else the midpoint between the channel's minimum and maximum in this file (a constant
     channel: never in contact);
-  - else an event (``EVENT:LABELS``, ``EVENT:TIMES`` = minutes, seconds): contact = 1 from the first
-    point frame at or after the earliest such event on (a frame within 1 % of a frame interval before
-    the event time counts as at it: the times are stored as 32-bit floats);
+  - else an event of that name (:func:`c3d_events`, with its combined ``CONTEXT LABEL`` too): contact = 1
+    from the first point frame at or after the earliest such event on (a frame within 1 % of a frame
+    interval before the event time counts as at it: the times are stored as 32-bit floats);
   - else, when ``contact_channel`` was not given, ``contact`` is all NaN (:data:`NO_CONTACT`): the
     caller applies the height rule (:func:`skilllib.recordings.map_frame` with
     ``contact_height``); when it was given, an error lists the analog channels and events.
+* **events** (:func:`c3d_events`): every event of ``EVENT:LABELS``, ``EVENT:CONTEXTS`` and ``EVENT:TIMES``
+  (minutes, seconds) is kept in ``attrs["events"]`` as ``(label, time in s)``, on the clock of ``t``
+  (the capture clock: an event at 1.5 s is at the sample whose ``t`` is 1.5 s). The label is kept as
+  written; an event with a context (``Left``, ``Right``, ``General``) is listed a second time under the
+  combined label ``"CONTEXT LABEL"`` (``Left`` + ``Foot Strike``: ``"Left Foot Strike"``), unless the
+  label already starts with its context, so that a rule can name either. Events without a label are
+  left out (a note says how many).
 """
 
 from __future__ import annotations
@@ -128,14 +136,56 @@ def _choose_marker(labels: list[str], markers: list[str], marker: str | None, pa
     raise DataFormatError(f"{path}: no marker {marker!r} (markers: {listed})")
 
 
-def _contact_from_analog(blocks: np.ndarray, threshold: float | None) -> np.ndarray:
-    """Per point frame (rows of ``blocks``, its analog samples): 1.0 when any is above the threshold."""
+def _contact_from_analog(blocks: np.ndarray, threshold: float | None, below: bool = False) -> np.ndarray:
+    """Per point frame (rows of ``blocks``, its analog samples): 1.0 when any is above the threshold
+    (``below``: below it)."""
     if threshold is None:
         lo, hi = np.nanmin(blocks), np.nanmax(blocks)
         if not hi > lo:
             return np.zeros(len(blocks))
         threshold = (lo + hi) / 2
-    return (blocks > threshold).any(axis=1).astype(float)
+    return ((blocks < threshold) if below else (blocks > threshold)).any(axis=1).astype(float)
+
+
+def c3d_events(params: dict) -> tuple[list[tuple[str, float]], int]:
+    """The events of a C3D file's parameters (rules: module docstring, events).
+
+    Parameters
+    ----------
+    params : dict
+        The file's parameter groups (``{group: {name: value}}``, as the reader gives them; text and numbers).
+
+    Returns
+    -------
+    events : list of tuple of (str, float)
+        ``(label, time)`` (text, s on the capture clock), ordered by time, then label; an event with a
+        context also under ``"CONTEXT LABEL"``.
+    n_unlabelled : int
+        Events left out because they have no label (dimensionless).
+    """
+    event = params.get("EVENT", {})
+    labels = _texts(event, "LABELS")
+    contexts = _texts(event, "CONTEXTS")
+    times = np.asarray(event.get("TIMES", np.zeros((2, 0))), dtype=float)
+    times = times.T if times.ndim == 2 and times.shape[0] == 2 else times.reshape(-1, 2)
+    n = min(len(labels), len(times))
+    used = _number(event, "USED")
+    if used is not None and 0 < used < n:
+        n = int(used)
+    out: list[tuple[str, float]] = []
+    unlabelled = 0
+    for i in range(n):
+        label = labels[i]
+        t = float(60 * times[i, 0] + times[i, 1])
+        if not label:
+            unlabelled += 1
+            continue
+        out.append((label, t))
+        context = contexts[i] if i < len(contexts) else ""
+        if context and not label.lower().startswith(context.lower()):
+            out.append((f"{context} {label}", t))
+    out.sort(key=lambda e: (e[1], e[0]))
+    return out, unlabelled
 
 
 def _contact_from_event(t: np.ndarray, t_event: float, rate: float) -> np.ndarray:
@@ -166,6 +216,7 @@ def read_c3d(
     marker: str | None = None,
     contact_channel: str | None = None,
     contact_threshold: float | None = None,
+    contact_below: bool = False,
     units: str | None = None,
 ) -> pd.DataFrame:
     """One marker of a C3D file as one trial: columns ``t`` (s), ``x, y, z`` (m, the file's axes), ``contact``.
@@ -188,6 +239,9 @@ def read_c3d(
     contact_threshold : float or None
         Analog level above which a C3D frame is in contact, in the channel's own unit (V, N, ...; taken as
         dimensionless here); None: midway between the channel's minimum and maximum in the file.
+    contact_below : bool
+        Whether a frame is in contact when the analog channel is *below* the threshold (a load cell whose
+        channel goes negative under load; dimensionless); False: above it.
     units : str or None
         Unit of the file's positions (text: ``"m"``, ``"cm"`` or ``"mm"``), overriding a missing or wrong
         header; None: the file's own.
@@ -197,7 +251,8 @@ def read_c3d(
     pandas.DataFrame
         ``t`` (s), ``x, y, z`` (m, the file's axes), ``contact`` (0/1 or NaN). ``attrs["units"]``: the unit
         the file states (text: ``"m"``, ``"cm"``, ``"mm"``) or None; ``attrs["notes"]``: disagreements in
-        the file that were resolved (list of text, e.g. frame counts).
+        the file that were resolved (list of text, e.g. frame counts); ``attrs["events"]``: the file's
+        events, ``(label, time)`` pairs (text, s on the clock of ``t``; :func:`c3d_events`).
 
     Raises
     ------
@@ -229,7 +284,7 @@ def read_c3d(
     else:
         got = parse_c3d(path, name, len(raw))
     try:
-        return _trial(path, layout, got, marker, contact_channel, contact_threshold, units)
+        return _trial(path, layout, got, marker, contact_channel, (contact_threshold, contact_below), units)
     except DataFormatError:
         raise
     except (ValueError, TypeError, IndexError, KeyError) as e:  # parameters of unexpected shape or type
@@ -237,7 +292,8 @@ def read_c3d(
 
 
 def _trial(path, layout, got, marker, contact_channel, threshold, units) -> pd.DataFrame:
-    """The trial's table from the checked layout and ezc3d's values (rules: module docstring)."""
+    """The trial's table from the checked layout and ezc3d's values (rules: module docstring);
+    ``threshold`` is ``(contact_threshold, contact_below)``."""
     params = got["params"]
     point = params.get("POINT", {})
     notes = list(layout.notes)
@@ -270,10 +326,14 @@ def _trial(path, layout, got, marker, contact_channel, threshold, units) -> pd.D
     xyz *= factor
     first = layout.first_frame
     t = ((first - 1 if first >= 1 else 0) + np.arange(n)) / rate
-    contact = _contact(params, got, n_ez, path, t, rate, contact_channel, threshold)
+    events, unlabelled = c3d_events(params)
+    if unlabelled:
+        notes.append(f"{unlabelled} event(s) without a label left out")
+    contact = _contact(params, got, n_ez, path, t, rate, contact_channel, threshold, events)
     frame = pd.DataFrame({"t": t, "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2], "contact": contact})
     frame.attrs["units"] = _file_units(stated)
     frame.attrs["notes"] = notes
+    frame.attrs["events"] = events
     return frame
 
 
@@ -285,7 +345,8 @@ def _contact(
     t: np.ndarray,
     rate: float,
     contact_channel: str | None,
-    threshold: float | None,
+    threshold: tuple[float | None, bool],
+    events: list[tuple[str, float]],
 ) -> np.ndarray:
     n = len(t)
     analog_labels = _texts(params.get("ANALOG", {}), "LABELS")
@@ -293,15 +354,10 @@ def _contact(
     if got["analogs"] and m > 0:
         samples = got["analogs"][min(got["analogs"])]
         blocks = np.asarray(samples[: n * m], dtype=float).reshape(n, m)  # (n_frames, samples per frame)
-        return _contact_from_analog(blocks, threshold)
+        return _contact_from_analog(blocks, *threshold)
     name = (contact_channel if contact_channel is not None else DEFAULT_CONTACT_CHANNEL).strip().lower()
-    event = params.get("EVENT", {})
-    ev_labels = _texts(event, "LABELS")
-    times = np.asarray(event.get("TIMES", np.zeros((2, 0))), dtype=float)
-    times = times.T if times.ndim == 2 and times.shape[0] == 2 else times.reshape(-1, 2)
-    ev_times = [
-        60 * times[i, 0] + times[i, 1] for i, lab in enumerate(ev_labels) if lab.lower() == name and i < len(times)
-    ]
+    ev_labels = [lab for lab, _ in events]
+    ev_times = [tm for lab, tm in events if lab.lower() == name]
     if ev_times:
         return _contact_from_event(t, min(ev_times), rate)
     if contact_channel is None:

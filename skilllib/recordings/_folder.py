@@ -1,4 +1,4 @@
-"""A folder of one-trial files (C3D, TRC, Vicon Nexus CSV, per-trial CSV) as one long table, with the files it
+r"""A folder of one-trial files (C3D, TRC, Vicon Nexus CSV, per-trial CSV) as one long table, with the files it
 could not read.
 
 A ``.csv`` (also compressed) whose first line is a Nexus section name (``Trajectories``, ...) is a Nexus
@@ -13,7 +13,18 @@ export, read like a C3D file (:func:`skilllib.recordings.read_nexus`); any other
   stem (``P_01_3.c3d``: participant ``P_01``, trial ``3``);
 * ``name_pattern``: a regular expression with named groups ``trial`` and, optionally, ``participant``,
   matched against the whole stem of every file (``re.fullmatch``); its ``participant`` group, when it
-  has one, replaces the sub-folder's name; a file directly in ``DIR`` needs it.
+  has one, replaces the sub-folder's name; a file directly in ``DIR`` needs it. Other named groups are
+  allowed (for the marker template below); groups may nest, so that the trial keeps what tells two files
+  apart: ``ADL(?P<participant>\d+)F(?P<trial>(?P<hand>[LR])\d)`` names ``ADL005FR3`` participant
+  ``005``, trial ``R3``, hand ``R``.
+
+**Marker template.** ``marker`` may hold ``{group}`` fields (Python's ``str.format`` syntax; ``{{`` for a
+brace), filled for each file from its name: the groups of ``name_pattern``, and ``participant`` and
+``trial`` as the naming rule gives them. With the pattern above, ``marker="{hand}FTP"`` reads ``RFTP``
+in the ``R`` files and ``LFTP`` in the ``L`` files. A field the name does not give is an error naming
+the field and the groups there are (before any file is read); a group that takes no part in one file's
+match makes that file a problem (:class:`FileProblem`). A single file is named the same way
+(:func:`skilllib.recordings.single_file_ids`).
 
 Only ``DIR`` and its direct sub-folders are read (a sub-folder that is a link is followed). Trials come in
 a fixed order: participants, then trials, in natural order (``P2`` before ``P10``; ids equal as numbers,
@@ -35,6 +46,7 @@ from __future__ import annotations
 import io
 import os
 import re
+import string
 from collections.abc import Mapping
 from pathlib import Path
 from typing import NamedTuple
@@ -130,6 +142,107 @@ def compile_pattern(name_pattern: str | re.Pattern | None) -> re.Pattern | None:
     if "trial" not in pat.groupindex:
         raise DataFormatError(f"name pattern {pat.pattern!r} has no (?P<trial>...) group")
     return pat
+
+
+def template_fields(marker: str | None) -> list[str]:
+    """The ``{field}`` names of a marker template, in order (empty for a plain marker name).
+
+    Parameters
+    ----------
+    marker : str or None
+        The marker option (text), perhaps holding ``{group}`` fields; None: no marker.
+
+    Returns
+    -------
+    list of str
+        The fields it names (text).
+
+    Raises
+    ------
+    DataFormatError
+        When the template cannot be read (an unmatched brace, an empty or numbered field, a format spec).
+    """
+    if not marker or "{" not in marker and "}" not in marker:
+        return []
+    try:
+        parsed = list(string.Formatter().parse(marker))
+    except ValueError as e:
+        raise DataFormatError(f"marker template {marker!r} cannot be read: {e} (write {{{{ for a brace)") from None
+    fields = []
+    for _, name, spec, conv in parsed:
+        if name is None:
+            continue
+        if not name.isidentifier() or spec or conv:
+            raise DataFormatError(
+                f"marker template {marker!r}: {{{name}{'!' + conv if conv else ''}{':' + spec if spec else ''}}} "
+                f"is not a group name (write {{group}} with a group of the name pattern)"
+            )
+        fields.append(name)
+    return fields
+
+
+def name_groups(pattern: re.Pattern | None) -> list[str]:
+    """The groups a file's name gives for a marker template: ``participant``, ``trial`` and the named
+    groups of ``pattern``."""
+    return list(dict.fromkeys(["participant", "trial", *((pattern.groupindex) if pattern is not None else ())]))
+
+
+def check_template(marker: str | None, pattern: re.Pattern | None) -> None:
+    """DataFormatError when the marker template names a field the file names do not give (module docstring).
+
+    Parameters
+    ----------
+    marker : str or None
+        The marker option (text), perhaps a template with ``{group}`` fields.
+    pattern : re.Pattern or None
+        The compiled name pattern (text), or None for the naming rule.
+    """
+    have = name_groups(pattern)
+    for name in template_fields(marker):
+        if name not in have:
+            source = f"the name pattern {pattern.pattern!r}" if pattern is not None else "the file naming rule"
+            raise DataFormatError(
+                f"marker template {marker!r} names the field {name!r}, which {source} does not give "
+                f"(groups: {', '.join(have)}); add a (?P<{name}>...) group to the name pattern"
+            )
+
+
+def fill_marker(marker: str | None, groups: Mapping[str, str | None]) -> str | None:
+    """The marker name for one file: the template's fields filled from the file name's groups.
+
+    Parameters
+    ----------
+    marker : str or None
+        The marker option (text), perhaps a template with ``{group}`` fields (checked by :func:`check_template`).
+    groups : mapping of str to str or None
+        The groups of the file's name (text; None for a group that took no part in the match).
+
+    Returns
+    -------
+    str or None
+        The marker name (text); ``marker`` itself when it has no field.
+
+    Raises
+    ------
+    ValueError
+        When a field's group took no part in this file's match (the file's problem).
+    """
+    fields = template_fields(marker)
+    if not fields:
+        return marker
+    missing = [f for f in fields if groups.get(f) is None]
+    if missing:
+        raise ValueError(f"the name gives no {missing[0]!r} for the marker template {marker!r}")
+    return marker.format_map({f: groups[f] for f in fields})
+
+
+def file_groups(stem: str, folder: str | None, pattern: re.Pattern | None) -> dict[str, str | None]:
+    """The groups of a file's name (:func:`name_groups`): ``participant`` and ``trial`` (:func:`trial_ids`)
+    and the named groups of ``pattern``; ValueError as :func:`trial_ids`."""
+    participant, trial = trial_ids(stem, folder, pattern)
+    groups = dict(pattern.fullmatch(stem).groupdict()) if pattern is not None else {}
+    groups.update(participant=participant, trial=trial)
+    return groups
 
 
 def trial_ids(stem: str, folder: str | None, pattern: re.Pattern | None) -> tuple[str, str]:
@@ -237,6 +350,7 @@ def read_trial_file(
     columns: Mapping[str, str] | None = None,
     sep: str | None = None,
     time_unit: str | None = None,
+    contact_below: bool = False,
 ) -> pd.DataFrame:
     """One C3D, TRC, Nexus or per-trial CSV file as one trial in the book's frame (columns ``t, x, y, z,
     contact``; s, m, y up, 0/1 or NaN where the file's own contact flag is empty).
@@ -244,15 +358,24 @@ def read_trial_file(
     C3D, TRC and Nexus files carry their unit in the header (``units`` replaces it); a CSV is in
     ``units`` (None: m), its ``t`` in ``time_unit`` (None: s), split at ``sep`` (None: detected) and
     renamed by ``columns``. ``marker`` may list several names (``"RFTP,LFTP"``): the one of them that
-    moves most in the file. ``up_axis`` and ``contact_height`` as in :func:`map_frame`. The frame's
-    ``attrs["units"]`` is the unit the file (or ``units``) states, None when nothing states it. Raises
-    :class:`~skilllib.recordings.DataFormatError` naming the file.
+    moves most in the file (a template's fields must be filled before: :func:`fill_marker`). ``up_axis``
+    and ``contact_height`` as in :func:`map_frame`; ``contact_below``: a C3D analog channel is in contact
+    below its threshold (:func:`~skilllib.recordings.read_c3d`). The frame's ``attrs["units"]`` is the unit
+    the file (or ``units``) states, None when nothing states it; ``attrs["events"]`` the file's events
+    (``(label, time in s)``; a C3D file's, else empty). Raises :class:`~skilllib.recordings.DataFormatError`
+    naming the file.
     """
     path = Path(path)
     kind = file_kind(path)
     if kind == "c3d":
         df = _read_markers(
-            path, kind, marker, contact_channel=contact_channel, contact_threshold=contact_threshold, units=units
+            path,
+            kind,
+            marker,
+            contact_channel=contact_channel,
+            contact_threshold=contact_threshold,
+            contact_below=contact_below,
+            units=units,
         )
     elif kind == "trc":
         df = _read_markers(path, kind, marker, units=units)
@@ -274,6 +397,7 @@ def read_trial_file(
     )
     out.attrs["units"] = stated
     out.attrs["notes"] = list(df.attrs.get("notes", []))  # what the reader noticed but did not refuse
+    out.attrs["events"] = list(df.attrs.get("events", []))  # (label, t in s): a C3D file's
     return out
 
 
@@ -363,6 +487,7 @@ def read_folder(
     name_pattern: str | re.Pattern | None = None,
     sep: str | None = None,
     time_unit: str | None = None,
+    contact_below: bool = False,
 ) -> tuple[pd.DataFrame, list[FileProblem]]:
     """Every ``.c3d``, ``.trc`` and ``.csv`` (also compressed; Vicon Nexus exports among them) file of
     ``path`` as one trial each, and every other entry accounted for.
@@ -380,14 +505,17 @@ def read_folder(
     :func:`read_trial_file`; the naming rule (sub-folder or ``PARTICIPANT_TRIAL`` name, or
     ``name_pattern``) is in the module docstring. Two files giving one (participant, trial) are a
     problem for the second. The frame's ``attrs["units"]`` is the unit stated for every file read (the
-    headers' or ``units``; ``"mixed"`` when they differ), None when some file states none.
+    headers' or ``units``; ``"mixed"`` when they differ), None when some file states none. Its
+    ``attrs["events"]`` lists the events of the files read, ``(participant, trial, label, time in s)``.
 
     Parameters
     ----------
     path : str or pathlib.Path
         The folder (text).
     marker : str or None
-        Name of the marker to read (text); None: the file's only marker.
+        Name of the marker to read (text), a list ``"RFTP,LFTP"`` (the one that moves most), or a template
+        with ``{group}`` fields filled from each file's name (``"{hand}FTP"``; module docstring); None: the
+        file's only marker.
     contact_channel : str or None
         Name of the analog channel or event that gives contact in a C3D file (text); None: ``"contact"``
         when the file has it, else contact is left NaN for the height rule.
@@ -412,6 +540,9 @@ def read_folder(
         The separator of the per-trial CSV files (text: ``","``, ``"tab"``, ``";"``); None: detected.
     time_unit : str or None
         The unit of the per-trial CSV files' ``t`` (text: ``"s"``, ``"ms"``, ``"us"``); None: s.
+    contact_below : bool
+        Whether a C3D analog contact channel is in contact *below* its threshold (dimensionless); False:
+        above it.
 
     Returns
     -------
@@ -431,6 +562,7 @@ def read_folder(
     if not root.is_dir():
         raise DataFormatError(f"{root}: not a folder" if root.exists() else f"{root}: folder not found")
     pattern = compile_pattern(name_pattern)
+    check_template(marker, pattern)
     if units is not None:
         unit_factor(units, str(root))
     if up_axis is not None:
@@ -446,9 +578,9 @@ def read_folder(
         first = f" ({len(skipped)} skipped; first: {skipped[0].path}: {skipped[0].reason})" if skipped else ""
         raise DataFormatError(f"{root}: no .c3d, .trc or .csv files in the folder or its sub-folders{first}")
     opts = dict(
-        marker=marker,
         contact_channel=contact_channel,
         contact_threshold=contact_threshold,
+        contact_below=contact_below,
         units=units,
         up_axis=up_axis,
         contact_height=contact_height,
@@ -459,12 +591,14 @@ def read_folder(
     named, problems, unnamed = [], [], []
     for p, folder in found:
         try:
-            named.append((*trial_ids(file_stem(p), folder, pattern), p))
+            groups = file_groups(file_stem(p), folder, pattern)
         except ValueError as e:  # no ids: not a trial
             unnamed.append(SkippedFile(p.relative_to(root).as_posix(), str(e)))
+            continue
+        named.append((groups["participant"], groups["trial"], p, groups))
     named.sort(key=lambda r: (natural_key(r[0]), natural_key(r[1]), str(r[2])))
-    frames, seen, stated, notes = [], {}, set(), []
-    for participant, trial, p in named:
+    frames, seen, stated, notes, events = [], {}, set(), [], []
+    for participant, trial, p, groups in named:
         if (participant, trial) in seen:
             problems.append(
                 FileProblem(
@@ -477,8 +611,13 @@ def read_folder(
             continue
         seen[participant, trial] = p
         try:
+            this_marker = fill_marker(marker, groups)
+        except ValueError as e:  # a group of the template took no part in this name's match
+            problems.append(FileProblem(str(p), participant, trial, str(e)))
+            continue
+        try:
             _check_readable(p)
-            df = read_trial_file(p, **opts)
+            df = read_trial_file(p, marker=this_marker, **opts)
         except DataFormatError as e:
             problems.append(FileProblem(str(p), participant, trial, _reason(e, p)))
             continue
@@ -490,6 +629,7 @@ def read_folder(
             continue
         stated.add(df.attrs.get("units"))
         notes += [f"{p.relative_to(root)}: {note}" for note in df.attrs.get("notes", [])]
+        events += [(participant, trial, label, t) for label, t in df.attrs.get("events", [])]
         df = df.reindex(columns=list(TRIAL_COLUMNS))
         df.insert(0, "trial", trial)
         df.insert(0, "participant", participant)
@@ -507,5 +647,6 @@ def read_folder(
     frame["trial"] = frame["trial"].astype(object)
     frame.attrs["units"] = None if None in stated else stated.pop() if len(stated) == 1 else "mixed"
     frame.attrs["notes"] = notes
+    frame.attrs["events"] = events
     frame.attrs["skipped"] = sorted(skipped + unnamed, key=lambda q: natural_key(q.path))
     return frame, problems

@@ -23,12 +23,20 @@ A table with neither a ``participant`` nor a ``trial`` column is one recording n
 Then :func:`~skilllib.recordings.map_frame` renames columns, converts units, rotates the vertical
 axis to +y and fills contact from the surface height, as the options ask.
 
-Options (the command line's flags in brackets): ``marker`` (``--marker NAME``), ``contact_channel``
+Options (the command line's flags in brackets): ``marker`` (``--marker NAME``; a list ``RFTP,LFTP``: the
+one that moves most; a template ``{hand}FTP`` filled from each file's name:
+:mod:`skilllib.recordings._folder`), ``contact_channel``
 (``--contact-channel NAME``), ``contact_threshold`` (analog threshold in the channel's units),
+``contact_below`` (an analog channel is in contact below the threshold, not above),
 ``contact_height`` (``--contact-height M``), ``units`` (``--units m|cm|mm``), ``up_axis``
 (``--up-axis y|-y|z|-z|x|-x``), ``columns`` (``--columns old=new,...``, parsed by
 :func:`~skilllib.recordings.parse_columns`), ``name_pattern`` (a regular expression for file names
 in a folder), ``sep`` (``--sep , | ; | tab``), ``time_unit`` (``--time-unit s|ms|us``).
+
+**Events.** The events of C3D files (``EVENT:LABELS``, ``CONTEXTS``, ``TIMES``;
+:func:`~skilllib.recordings.read_c3d`) are kept: :attr:`Recordings.events` (one row per event:
+participant, trial, label, t in s on the clock of the trial's ``t``) and
+:meth:`Recordings.trial_events`. Other formats carry none (``events`` is None when nothing read has any).
 
 **Units.** When the unit of the positions is stated (a C3D, TRC or Nexus header, or ``units``), it is
 believed: the "not metres" guesses of :mod:`skilllib.recordings` are skipped and only a trial spanning
@@ -64,11 +72,13 @@ from ._errors import DataFormatError, check_file, quote
 from ._folder import (
     FileProblem,
     SkippedFile,
+    check_template,
     compile_pattern,
+    file_groups,
     file_kind,
+    fill_marker,
     read_folder,
     read_trial_file,
-    trial_ids,
 )
 from ._mapping import (
     UNIT_FACTORS,
@@ -80,7 +90,7 @@ from ._mapping import (
     up_axis_rotation,
 )
 from ._parquet import is_parquet, read_parquet, with_skipped
-from ._recordings import NA_TEXT, Recordings, read_recordings, recordings_from_frame
+from ._recordings import NA_TEXT, Recordings, events_frame, read_recordings, recordings_from_frame
 from ._trc import read_trc
 
 #: the cells pandas reads as missing by default (pandas.read_csv ``na_values``); kept for every column but the ids
@@ -212,6 +222,7 @@ def read_any(
     name_pattern: str | re.Pattern | None = None,
     sep: str | None = None,
     time_unit: str | None = None,
+    contact_below: bool = False,
 ) -> tuple[pd.DataFrame, list[FileProblem]]:
     """Read recordings from a folder, a ``.c3d``, ``.trc`` or Nexus file (one trial) or a CSV table (many).
 
@@ -219,14 +230,17 @@ def read_any(
     table without ``participant`` and ``trial`` columns, is named like a file directly in a folder:
     ``PARTICIPANT_TRIAL`` split at the last ``_`` (or ``name_pattern``); a stem without ``_`` is
     participant and trial both. The frame's ``attrs["units"]`` is the unit stated (a header's, or
-    ``units``), None when nothing states it.
+    ``units``), None when nothing states it; ``attrs["events"]`` the events of the C3D files read, as
+    ``(participant, trial, label, time in s)``.
 
     Parameters
     ----------
     path : str or pathlib.Path
         The file or folder to read (text).
     marker : str or None
-        Name of the marker to read (text); None: the file's only marker.
+        Name of the marker to read (text), a list ``"RFTP,LFTP"`` (the one that moves most), or a template
+        with ``{group}`` fields filled from the file name's groups (``"{hand}FTP"``); None: the file's only
+        marker.
     contact_channel : str or None
         Name of the analog channel or event that gives contact in a C3D file (text); None: ``"contact"``
         when the file has it, else contact is left NaN for the height rule.
@@ -252,6 +266,9 @@ def read_any(
         The separator of a CSV table (text: ``","``, ``"tab"`` or ``"\\t"``, ``";"``); None: detected.
     time_unit : str or None
         The unit of a CSV table's ``t`` (text: ``"s"``, ``"ms"``, ``"us"``); None: s.
+    contact_below : bool
+        Whether a C3D analog contact channel is in contact *below* its threshold (a load cell whose channel
+        goes negative under load; dimensionless); False: above it.
 
     Returns
     -------
@@ -283,16 +300,24 @@ def read_any(
             name_pattern=name_pattern,
             sep=sep,
             time_unit=time_unit,
+            contact_below=contact_below,
         )
     kind = file_kind(path)
     if kind in ("c3d", "trc", "nexus"):
         check_file(path, {"nexus": "Nexus CSV"}.get(kind, kind.upper()))  # before the name is read
-        participant, trial = single_file_ids(path, name_pattern)
+        groups = _single_file_groups(path, name_pattern)
+        check_template(marker, compile_pattern(name_pattern))
+        try:
+            this_marker = fill_marker(marker, groups)
+        except ValueError as e:
+            raise DataFormatError(f"{path}: {e}") from None
+        participant, trial = groups["participant"], groups["trial"]
         df = read_trial_file(
             path,
-            marker=marker,
+            marker=this_marker,
             contact_channel=contact_channel,
             contact_threshold=contact_threshold,
+            contact_below=contact_below,
             units=units,
             up_axis=up_axis,
             contact_height=contact_height,
@@ -301,6 +326,7 @@ def read_any(
         df.insert(0, "participant", participant)
         df[list(ID_COLUMNS)] = df[list(ID_COLUMNS)].astype(object)
         df.attrs["notes"] = [f"{path}: {note}" for note in df.attrs.get("notes", [])]
+        df.attrs["events"] = [(participant, trial, label, t) for label, t in df.attrs.get("events", [])]
         return df, []
     table = read_csv_table(path, columns=cols, sep=sep)
     if cols:
@@ -342,14 +368,20 @@ def single_file_ids(path: str | Path, name_pattern: str | re.Pattern | None = No
     DataFormatError
         When the name does not match ``name_pattern``.
     """
+    groups = _single_file_groups(path, name_pattern)
+    return groups["participant"], groups["trial"]
+
+
+def _single_file_groups(path: str | Path, name_pattern: str | re.Pattern | None) -> dict[str, str | None]:
+    """The groups of a single file's name (:func:`single_file_ids`): participant, trial and the pattern's."""
     path = Path(path)
     stem = file_stem_any(path)
     try:
-        return trial_ids(stem, None, compile_pattern(name_pattern))
+        return file_groups(stem, None, compile_pattern(name_pattern))
     except ValueError:
         if name_pattern is not None:
             raise DataFormatError(f"{path}: name {stem!r} does not match the name pattern") from None
-        return stem, stem
+        return {"participant": stem, "trial": stem}
 
 
 def _one_recording(table: pd.DataFrame, path: Path, name_pattern: str | re.Pattern | None) -> pd.DataFrame:
@@ -375,8 +407,8 @@ def _mapped_parquet(
     name pattern, separator) are refused naming the first given."""
     from ._recordings import natural_key
 
-    flags = ("--marker", "--contact-channel", "--contact-threshold", "--name-pattern", "--sep")
-    given = [flag for flag, v in zip(flags, refused) if v is not None]
+    flags = ("--marker", "--contact-channel", "--contact-threshold", "--name-pattern", "--sep", "--contact-below")
+    given = [flag for flag, v in zip(flags, refused) if v is not None and v is not False]
     if given:
         raise DataFormatError(
             f"{path}: {given[0]} does not apply to Parquet input, which is read in the book's format "
@@ -431,6 +463,7 @@ def load_recordings(
     time_unit: str | None = None,
     max_gap_s: float = MAX_GAP_S,
     fill: str = "cubic",
+    contact_below: bool = False,
 ) -> Recordings:
     """Validated :class:`~skilllib.recordings.Recordings` from a path, a DataFrame or Recordings.
 
@@ -440,7 +473,8 @@ def load_recordings(
     (:func:`skilllib.recordings.read_table`), so that messages name file lines; its columns are renamed
     before anything else, so ``--columns`` may name the file's own columns. Files of a folder that cannot
     be read are kept as ``invalid`` trials with their reason (file name and problem), never dropped;
-    messages about a sample of a folder's file name the file and the sample.
+    messages about a sample of a folder's file name the file and the sample. The events of C3D files are
+    kept (:attr:`Recordings.events`, :meth:`Recordings.trial_events`; module docstring: Events).
 
     Parameters
     ----------
@@ -456,7 +490,8 @@ def load_recordings(
         The lab's vertical axis with its sign (text: ``y``, ``-y``, ``z``, ``-z``, ``x``, ``-x``), rotated
         to the book's +y; None: already ``y``.
     marker : str or None
-        Name of the marker to read (text); None: the file's only marker.
+        Name of the marker to read (text), a list ``"RFTP,LFTP"`` (the one that moves most), or a template
+        with ``{group}`` fields filled from each file's name (``"{hand}FTP"``); None: the file's only marker.
     contact_channel : str or None
         Name of the analog channel or event that gives contact in a C3D file (text); None: ``"contact"``
         when the file has it, else contact is left NaN for the height rule.
@@ -479,6 +514,9 @@ def load_recordings(
         (:func:`skilllib.recordings.repair_trial`).
     fill : str
         How short gaps are filled: ``"cubic"`` or ``"linear"`` (text).
+    contact_below : bool
+        Whether a C3D analog contact channel is in contact *below* its threshold (a load cell whose channel
+        goes negative under load; dimensionless); False: above it.
 
     Returns
     -------
@@ -492,7 +530,7 @@ def load_recordings(
     """
     repair = dict(max_gap_s=max_gap_s, fill=fill)  # real-data defects (skilllib.recordings.repair_trial)
     given = (columns, units, up_axis, marker, contact_channel, contact_threshold, contact_height, name_pattern)
-    given += (time_unit,)
+    given += (time_unit, contact_below or None)
     parse_sep(sep)  # a wrong --sep fails before anything is read
     if all(v is None for v in given):  # nothing to map: the book's format as it is
         if isinstance(data, Recordings):
@@ -512,13 +550,17 @@ def load_recordings(
         time_unit=time_unit,
     )
     known = units is not None
+    events = None
     if isinstance(data, Recordings):
-        data = data.frame
+        data, events = data.frame, data.events
     if isinstance(data, pd.DataFrame):
-        return recordings_from_frame(map_frame(data, **opts), "<DataFrame>", units_known=known, **repair)
+        rec = recordings_from_frame(map_frame(data, **opts), "<DataFrame>", units_known=known, **repair)
+        return dataclasses.replace(rec, events=events) if events is not None else rec
     path = Path(data)
     if is_parquet(path):  # the book's columns: --columns, --units, --up-axis, --contact-height, --time-unit apply
-        return _mapped_parquet(path, opts, known, repair, marker, contact_channel, contact_threshold, name_pattern, sep)
+        return _mapped_parquet(
+            path, opts, known, repair, marker, contact_channel, contact_threshold, name_pattern, sep, contact_below
+        )
     kind = None if path.is_dir() else file_kind(path)
     if not path.is_dir() and kind not in ("c3d", "trc", "nexus"):  # a CSV table, perhaps compressed
         table, lines = read_table(path, sep)
@@ -544,6 +586,7 @@ def load_recordings(
         contact_threshold=contact_threshold,
         name_pattern=name_pattern,
         sep=sep,
+        contact_below=contact_below,
         **opts,
     )
     known = known or frame.attrs.get("units") is not None
@@ -553,7 +596,7 @@ def load_recordings(
     elif kind is not None:
         places = np.array([f"sample {i + 1}" for i in range(len(frame))], dtype=object)
     rec = recordings_from_frame(frame[list(COLUMNS)], str(path), places=places, units_known=known, **repair)
-    extra = {"notes": tuple(frame.attrs.get("notes", ()))}
+    extra = {"notes": tuple(frame.attrs.get("notes", ())), "events": events_frame(frame.attrs.get("events", ()))}
     if "skipped" in frame.attrs:  # a folder: what it holds besides its trials
         extra["skipped"] = tuple(frame.attrs["skipped"])
     return _with_problems(dataclasses.replace(rec, **extra), problems, path)
@@ -596,6 +639,7 @@ def _with_problems(rec: Recordings, problems: list[FileProblem], root: Path) -> 
         _repaired=rec._repaired,
         notes=rec.notes,
         skipped=rec.skipped,
+        events=rec.events,
     )
 
 

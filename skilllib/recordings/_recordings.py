@@ -114,6 +114,11 @@ class Recordings:
         For a folder of trial files (:func:`skilllib.recordings.read_folder`), the entries it holds that are
         not read at all, each with its reason (hidden, a broken link, another format, ...; text); None for
         any other input.
+    events : pandas.DataFrame or None
+        The events read with the recordings (C3D ``EVENT`` parameters; :func:`skilllib.recordings.read_c3d`):
+        one row per event, columns ``participant, trial, label`` (text) and ``t`` (s, on the clock of the
+        trial's ``t``), ordered by trial, then time; None when nothing read carries events.
+        :meth:`trial_events` gives one trial's.
     """
 
     frame: pd.DataFrame
@@ -126,6 +131,39 @@ class Recordings:
     _cache: dict = field(repr=False, default_factory=dict, compare=False)
     notes: tuple = ()
     skipped: tuple | None = None
+    events: pd.DataFrame | None = None
+
+    def trial_events(self, participant: Any, trial: Any) -> dict[str, np.ndarray]:
+        """The events of one trial, by label.
+
+        Parameters
+        ----------
+        participant, trial : Any
+            The trial's ids (text; a number is looked up as its text).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            Label (text, as written; with a context also ``"CONTEXT LABEL"``) -> the event times, sorted (s,
+            on the clock of :meth:`trial`'s ``t``); empty when the trial has no events.
+
+        Raises
+        ------
+        KeyError
+            When there is no such trial.
+        """
+        key = (_id(participant), _id(trial))
+        if key not in self._rows:
+            raise KeyError(f"no trial {key[1]!r} of participant {key[0]!r} in {self.source}")
+        if self.events is None or self.events.empty:
+            return {}
+        if "events" not in self._cache:
+            groups: dict[tuple[str, str], dict[str, np.ndarray]] = {}
+            ev = self.events
+            for (p, t, label), times in ev.groupby(["participant", "trial", "label"], sort=False)["t"]:
+                groups.setdefault((p, t), {})[label] = np.sort(times.to_numpy(dtype=float))
+            self._cache["events"] = groups
+        return dict(self._cache["events"].get(key, {}))
 
     def trial(self, participant: Any, trial: Any) -> Trial:
         """The samples of one trial (whatever its status; resampled when its timing says so); KeyError if
@@ -232,6 +270,31 @@ def sort_ids(labels: Iterable[Any]) -> list:
         The labels in natural order.
     """
     return sorted(labels, key=natural_key)
+
+
+EVENT_COLUMNS = ("participant", "trial", "label", "t")  #: columns of :attr:`Recordings.events`
+
+
+def events_frame(events: Iterable[tuple[Any, Any, str, float]]) -> pd.DataFrame | None:
+    """The events table of :class:`Recordings` from ``(participant, trial, label, time)`` rows.
+
+    Parameters
+    ----------
+    events : iterable of tuple
+        ``(participant, trial, label, t)``: ids and label (text; numbers as their text), time (s).
+
+    Returns
+    -------
+    pandas.DataFrame or None
+        Columns ``participant, trial, label`` (text) and ``t`` (s), rows in the order given, ids as text;
+        None when there are no events.
+    """
+    rows = [(_id(p), _id(tr), str(label), float(t)) for p, tr, label, t in events]
+    if not rows:
+        return None
+    out = pd.DataFrame(rows, columns=list(EVENT_COLUMNS))
+    out["t"] = out["t"].astype(float)
+    return out
 
 
 def _where(source: str, place: str, column: str) -> str:

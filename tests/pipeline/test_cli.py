@@ -52,6 +52,8 @@ FIGURES = (
     "time_scales",
 )
 TRIAL_KEYS = {
+    "peak_acc",
+    "path_length",
     "repairs",
     "n_repaired",
     "participant",

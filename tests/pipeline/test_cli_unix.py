@@ -74,8 +74,11 @@ def test_help_and_version_import_none_of_the_heavy_libraries(argv):
 
 def test_the_cli_default_k_is_the_papers():
     from skilllib.pipeline._cli import _parser
+    from skilllib.pipeline._run import resolve_task
 
-    assert _parser().parse_args(["run", "--out", "o"]).k == pt.DEFAULT_K == 6  # the paper's six clusters
+    args = _parser().parse_args(["run", "--out", "o"])
+    assert args.k is None  # not given: the task's (here the paper's) k
+    assert resolve_task(args.task, k=args.k).k == pt.DEFAULT_K == 6  # the paper's six clusters
 
 
 # --- progress bars only on a terminal ----------------------------------------------------------------

@@ -84,7 +84,7 @@ def _draw(run_: pipeline.PipelineRun, mp: pytest.MonkeyPatch, synthetic: bool) -
         return [Path(out_dir) / f"{name}.png"]
 
     def stub(fname):
-        def draw(*args):
+        def draw(*args, **kwargs):  # keywords: the task's end and selection window (test_tasks.py)
             calls.append((fname, args))
             return plt.figure()
 

@@ -41,7 +41,7 @@ from skilllib.robot import assess_one, dynamic_limits, get_robot, transfer
 from skilllib.smoothness import DEFAULT_AMP_TH, DEFAULT_FC, DEFAULT_PADLEVEL, SPARC_PARAMS
 
 REL = 1e-12  # floats that pass through JSON (repr round-trips exactly; this only allows for rounding)
-FEATURES = ("pv", "contact_speed", "duration", "sparc", "sparc_band_end_hz", "ldlj")
+FEATURES = ("pv", "contact_speed", "duration", "sparc", "sparc_band_end_hz", "ldlj", "peak_acc", "path_length")
 TRIAL_KEYS = {
     "participant",
     "trial",
@@ -124,8 +124,10 @@ def _same(got: Any, want: Any, what: str = "value") -> None:
 
 def _without(res: dict, *paths: str) -> dict:
     """A deep copy of ``res`` without the keys at the given paths (``"transfer.qd_limits"``,
-    ``"transfer.prototypes.*.feasible"``: ``*`` for every item of a list)."""
+    ``"transfer.prototypes.*.feasible"``: ``*`` for every item of a list), and without ``task``, the record
+    of the options themselves (test_the_task_block_records_each_option)."""
     res = copy.deepcopy(res)
+    res.pop("task", None)
     for path in paths:
         _drop(res, path.split("."))
     return res
@@ -774,7 +776,7 @@ def test_figures_are_written_only_when_asked_and_change_nothing_else(tmp_path, r
     pipeline.run(data, out, k=k, write_figures=True)
     res = _load(out)
     plain_res, plain, out_plain = runs(data, k=k)
-    assert _without(res, "figures") == plain_res
+    assert _without(res, "figures") == _without(plain_res) and res["task"] == plain_res["task"]
     want = {f"{n}.{ext}" for n in FIGURES for ext in ("png", "svg")} | {"segmentation-01.png"}  # 10 trials: a page
     assert len(res["figures"]) == len(want) and set(res["figures"]) == want
     assert {p.name for p in out.iterdir()} == want | {"results.json", MANIFEST}
@@ -798,21 +800,31 @@ NO_READ_OPTIONS = {
     "name_pattern": None,
     "sep": None,
     "time_unit": None,
+    "contact_below": None,
 }
+#: What the command passes when no option is given: None for every setting of the task (run() then takes
+#: the task's, the paper's: test_run_takes_the_papers_task_for_every_option_left_out).
 CLI_DEFAULTS = {
     "data": None,
-    "k": pt.DEFAULT_K,
-    "robot": "simple6",
+    "task": None,
+    "start": None,
+    "end": None,
+    "hold": None,
+    "split": None,
+    "select": None,
+    "features": None,
+    "k": None,
+    "robot": None,
     "qd_max": None,
     "qdd_max": None,
     "tau_max": None,
-    "scaling": "raw",
-    "random_state": 0,
-    "fc": DEFAULT_FC,
-    "amp_th": DEFAULT_AMP_TH,
-    "padlevel": DEFAULT_PADLEVEL,
+    "scaling": None,
+    "random_state": None,
+    "fc": None,
+    "amp_th": None,
+    "padlevel": None,
     "sensitivity": None,
-    "lowpass": "auto",
+    "lowpass": None,
     "read_options": NO_READ_OPTIONS,
     "write_figures": True,
     "workers": None,
@@ -880,6 +892,46 @@ CLI_CASES = [
 ]
 
 
+@pytest.mark.parametrize(
+    "option, value, path",
+    [
+        ("k", 7, ("cluster", "k")),
+        ("robot", "panda", ("robot", "name")),
+        ("scaling", "standard", ("cluster", "scaling")),
+        ("random_state", 5, ("cluster", "seed")),
+        ("fc", 12.5, ("sparc", "fc")),
+        ("qd_max", 1.5, ("robot", "qd_max")),
+        ("lowpass", "none", ("segment", "lowpass")),
+    ],
+)
+def test_the_task_block_records_each_option(runs, base_file, base, option, value, path):
+    """results.json's task names the run's options (so that --task results.json runs it again), and its
+    name says the paper's task was changed. Catches: an option recorded from the default, not the run."""
+    res = runs(base_file, **{option: value})[0]
+    assert base["task"]["name"] == "paper" and res["task"]["name"] == "paper + options"
+    assert res["task"][path[0]][path[1]] == value
+    others = {k: v for k, v in res["task"].items() if k not in ("name", path[0])}
+    assert others == {k: v for k, v in base["task"].items() if k not in ("name", path[0])}
+
+
+def test_run_takes_the_papers_task_for_every_option_left_out():
+    """The command passes None for every option not given; run() then resolves the paper's task (the
+    defaults that used to be the command's own: k 6, simple6, raw, seed 0, the book's SPARC, auto filter)."""
+    import inspect
+
+    from skilllib.pipeline._run import resolve_task
+    from skilllib.task import PAPER_TASK
+
+    params = inspect.signature(pipeline.run).parameters
+    for key in set(CLI_DEFAULTS) - {"data", "read_options", "write_figures"}:
+        if key in params:
+            assert params[key].default is None, key
+    job = resolve_task(None, **{k: None for k in ("k", "robot", "scaling", "fc", "amp_th", "padlevel", "lowpass")})
+    assert job == PAPER_TASK
+    assert (job.k, job.robot, job.scaling, job.seed) == (pt.DEFAULT_K, "simple6", "raw", 0)
+    assert (job.fc, job.amp_th, job.padlevel, job.lowpass) == (DEFAULT_FC, DEFAULT_AMP_TH, DEFAULT_PADLEVEL, "auto")
+
+
 @pytest.mark.parametrize("argv, changed", CLI_CASES, ids=[" ".join(a) or "defaults" for a, _ in CLI_CASES])
 def test_each_flag_reaches_run_as_its_option_and_no_other(
     monkeypatch, capsys, tmp_path, runs, base_file, argv, changed
@@ -914,7 +966,9 @@ def test_cli_writes_what_run_computes(tmp_path, capsys, runs, base_file):
     )
     out = capsys.readouterr().out
     assert code == 0
-    assert _load(tmp_path / "o") == _without(runs(base_file, **COMBINED)[0], "sparc_sensitivity")
+    got, want = _load(tmp_path / "o"), runs(base_file, **COMBINED)[0]
+    assert _without(got, "sparc_sensitivity") == _without(want, "sparc_sensitivity")
+    assert want["task"]["sparc"].pop("sensitivity") == ["fc=10"] and got["task"] == want["task"]
     assert "k = 4 clusters (standard features)" in out and "feasibility on UR5" in out
     assert f"joint velocity limits {', '.join(f'{v:.3g}' for v in UR5_LIMITS)} rad/s" in out
 

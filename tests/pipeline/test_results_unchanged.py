@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from skilllib.pipeline import run
+from skilllib.task import PAPER_TASK
 
 BEFORE = Path(__file__).resolve().parents[1] / "fixtures" / "pipeline" / "results_before_issue21.json.gz"
 
@@ -26,6 +27,10 @@ def schema_2(results: dict, axes: list[float]) -> dict:
     out["trials"] = [{**t, "repairs": "", "n_repaired": 0} for t in out["trials"]]
     # the noise at rest is measured per axis too (issue 22); the cohort's decision is not borderline
     out["filter"] = {**out["filter"], "position_noise_axes_m": axes, "borderline": False, "alternative_cutoff_hz": None}
+    # the task as data (issue 24): the resolved task and the selection's windows are recorded, and two more
+    # per-trial features are computed; nothing else changes
+    out["selection"] = ["contact_speed=0.3:0.7"]
+    out["task"] = PAPER_TASK.to_dict()
     for p in out["transfer"]["prototypes"]:
         p["feasible_velocity"] = p.pop("feasible")
         del p["time_scale"]
@@ -43,6 +48,9 @@ def test_the_default_run_is_unchanged_by_the_redesign(tmp_path):
     want = schema_2(json.loads(gzip.decompress(BEFORE.read_bytes())), axes)
     for r in (got, want):
         r.pop("skilllib_version")
+    for t in got["trials"]:  # new in issue 24, checked against the per-trial functions in tests/features
+        assert (t["peak_acc"] is None) == (t["path_length"] is None) == (t["status"] == "invalid")
+        del t["peak_acc"], t["path_length"]
     assert got.keys() == want.keys()
     for key in want:
         assert got[key] == want[key], key
