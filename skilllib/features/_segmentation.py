@@ -4,10 +4,10 @@ The per-trial definitions of :mod:`skilllib.features` (its docstring gives the m
 for it): :func:`velocity`, :func:`segment_arrays` under the task's start and end rules
 (:mod:`skilllib.features._rules`: the paper's speed onset and first contact by default; also a relative
 onset, an event, the speed's offset, a height crossed), :func:`segmentation_detail` (what the rules saw,
-for the figures), the two kinematic features :func:`peak_acceleration` (``peak_acc``, m/s^2: max |d speed /
-dt| over the segment) and :func:`path_length` (``path_length``, m: the trapezoidal integral of the speed),
-and the texts of the reasons why a trial cannot be segmented. :mod:`skilllib.features` computes the same
-for many trials at once and is tested against these.
+for the figures), the two kinematic features :func:`peak_acceleration` (``peak_acc``, m/s^2: the
+largest ``|d speed / dt|`` over the segment) and :func:`path_length` (``path_length``, m: the
+trapezoidal integral of the speed), and the texts of the reasons why a trial cannot be segmented.
+:mod:`skilllib.features` computes the same for many trials at once and is tested against these.
 """
 
 from __future__ import annotations
@@ -373,7 +373,7 @@ def frame_at(t: np.ndarray, time: float, fs: float) -> int:
 
 
 def peak_acceleration(speed: np.ndarray, fs: float) -> float:
-    """The peak magnitude of the tangential acceleration: max |d speed / dt| (m/s^2) over a segment.
+    """The peak magnitude of the tangential acceleration: the largest ``|d speed / dt|`` (m/s^2) over a segment.
 
     ``numpy.gradient(speed, 1 / fs)`` (central differences inside, one-sided at the ends); NaN for fewer
     than 2 samples.

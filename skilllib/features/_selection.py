@@ -104,6 +104,8 @@ class Window:
         if self.feature == "contact_speed":
             label = "contact speed"  # the paper's reason text, unchanged
         u = f" {unit}" if unit else ""
+        if np.isnan(value):
+            return f"{label} not computed for this trial: outside the window {self.text()}"
         if self.lo is not None and value < self.lo:
             return f"{label} {value:.3f}{u} below {self.lo:g}{u}"
         if self.hi is not None and value > self.hi:
@@ -216,10 +218,10 @@ def apply_selection(features: pd.DataFrame, windows: Sequence[Window]) -> pd.Dat
     reason = np.where(valid, "", out["reason"].to_numpy(dtype=object)).astype(object)
     for w in reversed(list(windows)):  # the first failing window's reason is the one kept
         values = out[w.feature].to_numpy(dtype=float)
-        for i in np.flatnonzero(valid):
-            r = w.reason(values[i])
-            if r:
-                reason[i] = r
+        low = values < w.lo if w.lo is not None else np.zeros(len(values), bool)
+        high = values > w.hi if w.hi is not None else np.zeros(len(values), bool)
+        for i in np.flatnonzero(valid & (low | high | np.isnan(values))):  # reasons for the failing only
+            reason[i] = w.reason(values[i])
     out["reason"] = reason
     out["status"] = np.where(valid, np.where(reason == "", "selected", "excluded"), "invalid").astype(object)
     out.attrs = dict(features.attrs)

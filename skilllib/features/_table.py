@@ -28,7 +28,7 @@ For every trial of :class:`skilllib.recordings.Recordings`:
   :data:`SPARC_PARAMS`, with ``sparc_band_end_hz`` (Hz, the last frequency of its band) and
   ``sparc_capped`` (True when the maximum cut-off fc, not the amplitude threshold, ended the band; see
   :func:`skilllib.smoothness.sparc_bands`); ``ldlj`` log dimensionless jerk (Balasubramanian et al. 2015);
-  ``peak_acc`` the peak magnitude of the tangential acceleration (m/s^2), max |d speed / dt| over the
+  ``peak_acc`` the peak magnitude of the tangential acceleration (m/s^2), the largest ``|d speed / dt|`` over the
   segment with ``numpy.gradient(speed, 1 / fs)`` (NaN below 2 samples); ``path_length`` the distance
   travelled over the segment (m), the trapezoidal integral of the speed, ``numpy.trapezoid(speed,
   dx=1 / fs)``.
@@ -312,7 +312,7 @@ def trial_features(
     Columns: ``participant, trial, status`` (``selected`` / ``excluded`` / ``invalid``), ``reason``
     (empty when selected), ``pv`` (m/s), ``contact_speed`` (m/s; the speed at the last sample before the
     end), ``duration`` (s), ``sparc``, ``sparc_band_end_hz`` (Hz), ``sparc_capped`` (nullable boolean: fc
-    ended the band), ``ldlj``, ``peak_acc`` (m/s^2, peak |d speed / dt|), ``path_length`` (m, distance
+    ended the band), ``ldlj``, ``peak_acc`` (m/s^2, the largest ``|d speed / dt|``), ``path_length`` (m, distance
     travelled over the segment), ``n`` (segment samples), ``t_onset``, ``t_contact`` (s, time stamps of
     the onset sample and of the end sample: the first contact sample, or the offset, event or height
     sample of another end rule), ``resampled`` (the trial's time stamps were irregular and it was resampled onto

@@ -58,8 +58,8 @@ class SegmentedTrials:
     """Per trial (aligned with the runs): ``reason`` ("" when segmented), ``onset`` and ``contact``
     (indices within the trial of the onset and of the end sample: contact, offset, event or height; -1
     when unknown), ``n`` (segment samples, 0 when not segmented), ``pv`` and ``contact_speed`` (m/s; the
-    speed at the last sample before the end), ``duration`` (s), ``ldlj``, ``peak_acc`` (m/s^2, max |d speed
-    / dt| over the segment, NaN below 2 samples), ``path_length`` (m, the trapezoidal integral of the
+    speed at the last sample before the end), ``duration`` (s), ``ldlj``, ``peak_acc`` (m/s^2, the largest
+    ``|d speed / dt|`` over the segment, NaN below 2 samples), ``path_length`` (m, the trapezoidal integral of the
     speed), ``t_onset`` and ``t_contact`` (s, time stamps of the onset and the end sample; NaN when not
     segmented); ``speeds``: the segments' speed profiles (m/s) of the segmented trials, in trial order."""
 

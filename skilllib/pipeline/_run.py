@@ -316,7 +316,7 @@ def resolve_task(
         The segmentation rules or their texts.
     hold : float, optional
         The offset's hold and the shortest rest between movements (s).
-    **options : Any
+    \\*\\*options : Any
         ``k``, ``robot``, ``qd_max`` (rad/s), ``qdd_max`` (rad/s^2), ``tau_max`` (N m), ``scaling``, ``fc`` (Hz),
         ``amp_th``, ``padlevel``, ``sensitivity``, ``lowpass``, ``split``, ``features``.
 

@@ -68,7 +68,7 @@ def feature_frame(pv: Any, sparc: Any, participant: Any = None, trial: Any = Non
         The participant ids (text); None: 0 for every row.
     trial : array_like or None
         The trial ids (text); None: 0..n-1.
-    **columns : array_like
+    \\*\\*columns : array_like
         Further feature columns by name (e.g. ``ldlj``, dimensionless; ``duration``, s), n values each.
 
     Returns

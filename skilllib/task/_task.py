@@ -237,7 +237,7 @@ class Task:
 
         Parameters
         ----------
-        **options : Any
+        \\*\\*options : Any
             Any of the keys of :data:`KEYS` (``start``, ``end``, ``select``/``windows``, ``features``, ``k``,
             ``robot``/``name``, ``read`` keys, ...), as text or values; ``hold`` in s.
 

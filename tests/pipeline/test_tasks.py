@@ -218,3 +218,21 @@ def test_an_upward_reach_stays_upward_on_the_robot(capsys, tmp_path):
         rise = tr.x_base[-1, 2] - tr.x_base[0, 2]
         assert rise > 0.1  # up on the robot (base z), by most of the 0.2 m climbed to 1.1 m
         assert abs(tr.x_base[-1, 2] - tr.x_base[0, 2]) > abs(tr.x_base[-1, 1] - tr.x_base[0, 1])
+
+
+def test_the_sparc_sensitivity_follows_the_tasks_selection_and_features(capsys, tmp_path, cohort_csv):
+    """--sensitivity re-derives each setting's trials with the run's own selection (not the paper's window)
+    and clusters the run's features; without sparc among them there is nothing to compare, and it says so."""
+    args = ("--data", cohort_csv, "--k", "3", "--select", "pv=0.6:", "--sensitivity", "fc=10")
+    code, res, _, err = run_cli(capsys, *args, "--out", tmp_path / "a", "--features", "pv,sparc,ldlj")
+    assert code == 0, err
+    sens = res["sparc_sensitivity"]
+    n_sel = sum(t["status"] == "selected" for t in res["trials"])
+    assert [s["n_selected"] for s in sens["settings"]] == [n_sel, n_sel]  # the pv window does not read SPARC
+    assert set(sens["settings"][0]["prototypes"][0]) >= {"pv", "sparc", "ldlj"}
+    code, res, _, err = run_cli(capsys, *args, "--out", tmp_path / "b", "--features", "pv,ldlj")
+    assert code == 0, err
+    assert "sparc_sensitivity" not in res
+    assert any(
+        m.startswith("no SPARC sensitivity analysis: the clustering features (pv, ldlj)") for m in res["messages"]
+    )
