@@ -187,8 +187,8 @@ invalid
 # %%
 #| label: fig-real-segments
 #| caption: "Real recordings (UE-ADL forward reaches, Vicon, 100 Hz): fingertip speed (m/s) against time (s) over six whole recordings, as `run` draws them. Shaded: the segment from onset (faster than 3 % of the peak for longer than 0.1 s) to offset (back at or below 3 % for 0.1 s). ADL013 L4's first frames jump, ADL013 R2 twitches before the reach; neither starts the movement."
-detail = sk.trial_features(
-    adl, start=sk.parse_start("speed:3%"), end=sk.parse_end("offset:3%")
+detail = sk.trial_features(  # the run's rules; window=None: no selection window
+    adl, start=sk.parse_start("speed:3%"), end=sk.parse_end("offset:3%"), window=None
 )
 shown = [("ADL001", "R2"), ("ADL002", "L1"), ("ADL005", "R4"),
          ("ADL013", "L4"), ("ADL013", "R2"), ("ADL016", "R2")]  # fmt: skip

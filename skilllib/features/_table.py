@@ -295,7 +295,7 @@ def trial_features(
     recordings: Recordings,
     *,
     sparc_params: Mapping[str, float] | None = None,
-    window: tuple[float, float] = CONTACT_WINDOW,
+    window: tuple[float, float] | None = CONTACT_WINDOW,
     start: StartRule = PAPER_START,
     end: EndRule = PAPER_END,
     onset_speed: float | None = None,
@@ -328,8 +328,9 @@ def trial_features(
     sparc_params : mapping of str to float or None
         SPARC's parameters ``fc`` (Hz), ``amp_th`` and ``padlevel`` (dimensionless); None:
         :data:`SPARC_PARAMS`.
-    window : tuple of float
-        The inclusive contact-speed window of the selected trials (m/s).
+    window : tuple of float or None
+        The inclusive contact-speed window of the selected trials (m/s); None: every valid trial is
+        selected (other windows: :func:`skilllib.features.apply_selection`).
     start : StartRule
         Where a movement starts (:func:`skilllib.features.parse_start`; speeds in m/s); recorded in
         ``attrs["start"]`` of the result.
@@ -390,8 +391,8 @@ def trial_features(
         capped[done] = bands.capped
     reason = np.where(ok, seg.reason, trials["reason"].to_numpy(dtype=object)).astype(object)
     status = np.full(n_all, "invalid", dtype=object)
-    lo, hi = window
     cs = seg.contact_speed
+    lo, hi = window if window is not None else (-np.inf, np.inf)
     inside = done & (cs >= lo) & (cs <= hi)
     status[inside] = "selected"
     status[done & ~inside] = "excluded"

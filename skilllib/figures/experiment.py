@@ -336,7 +336,7 @@ def plot_contact_speeds(
         The per-trial table of :func:`skilllib.features.trial_features` (pv and contact_speed in m/s,
         duration in s, sparc dimensionless).
     bin_width : float
-        The width of a bin (m/s).
+        The width of a bin (m/s), with a window; without one the bins fit the speeds (numpy's "auto").
     ax : matplotlib.axes.Axes or None
         The axes to draw into; None: a new figure.
     window : tuple of float or None
@@ -353,7 +353,8 @@ def plot_contact_speeds(
     v = features.loc[features["status"] != "invalid", "contact_speed"].to_numpy()
     n_sel = int((features["status"] == "selected").sum())
     fig, ax = plt.subplots(figsize=(5.5, 3.2)) if ax is None else (ax.figure, ax)
-    ax.hist(v, bins=np.arange(0, v.max() + bin_width, bin_width), color="0.55")
+    bins = np.arange(0, v.max() + bin_width, bin_width) if window is not None else "auto"  # no window: any scale
+    ax.hist(v, bins=bins, color="0.55")
     if window is not None:
         ax.axvspan(
             *window,

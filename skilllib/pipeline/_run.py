@@ -355,10 +355,11 @@ def resolve_task(
             )
         if start is not None:
             changes["start"] = start if isinstance(start, StartRule) else parse_start(start)
-        new_end = base.end if end is None else end if isinstance(end, EndRule) else parse_end(end)
-        changes["end"] = new_end if hold is None else replace(new_end, hold_s=float(hold))
-        if hold is not None and not (np.isfinite(float(hold)) and float(hold) >= 0):
+        if hold is not None and not (isinstance(hold, (int, float)) and np.isfinite(hold) and hold >= 0):
             raise OptionError(f"hold must be a time of at least 0 s, got {hold!r}")
+        hold_s = base.end.hold_s if hold is None else float(hold)  # the task's hold unless one is given
+        new_end = base.end if end is None else end if isinstance(end, EndRule) else parse_end(end, hold_s)
+        changes["end"] = new_end if hold is None else replace(new_end, hold_s=hold_s)
         job = replace(base, **changes)
         if job != base and not base.name.endswith(OVERRIDDEN):  # the task as given, then changed by options
             job = replace(job, name=base.name + OVERRIDDEN)

@@ -519,8 +519,9 @@ def preset_names() -> list[str]:
 def load_task(source: str | Path, base: Task = PAPER_TASK) -> Task:
     """A task from a TOML file, a shipped preset's name, or a ``results.json`` (its ``task`` block).
 
-    Keys left out keep ``base``'s values (the paper's). Every problem is a :class:`TaskError` naming the
-    file, the line (for a TOML file) and the values allowed.
+    Keys left out keep ``base``'s values (the paper's); a file without ``name`` is named after itself
+    (``lab.toml``: ``lab``). Every problem is a :class:`TaskError` naming the file, the line (for a TOML
+    file) and the values allowed.
 
     Parameters
     ----------
@@ -558,7 +559,8 @@ def load_task(source: str | Path, base: Task = PAPER_TASK) -> Task:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise TaskError(f"{path}: not a valid TOML task file ({e})") from None
-    return _apply(base, data, source=str(path), text=text)
+    named = data if "name" in data else {"name": path.stem, "description": "", **data}  # not the base's name
+    return _apply(base, named, source=str(path), text=text)
 
 
 def task_fields() -> list[str]:

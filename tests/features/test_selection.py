@@ -101,3 +101,17 @@ def test_a_window_selects_exactly_the_trials_inside_it(values, a, b):
     inside = [lo <= v <= hi for v in values]
     assert (got["status"] == "selected").tolist() == inside
     assert parse_window(Window("pv", lo, hi).text()) == Window("pv", float(f"{lo:g}"), float(f"{hi:g}"))
+
+
+def test_trial_features_without_a_window_selects_every_valid_trial():
+    from skilllib.datasets import cohort_path
+    from skilllib.features import trial_features
+    from skilllib.recordings import load_recordings
+
+    rec = load_recordings(cohort_path())
+    paper, none = trial_features(rec), trial_features(rec, window=None)
+    valid = paper["status"] != "invalid"
+    assert (none.loc[valid, "status"] == "selected").all()
+    pd.testing.assert_frame_equal(none[~valid], paper[~valid])  # invalid trials as they were
+    assert (paper["status"] == "excluded").sum() > 0  # the paper's window excludes some: None changes them
+    pd.testing.assert_frame_equal(apply_selection(none, PAPER_SELECTION), paper)

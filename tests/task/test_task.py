@@ -153,3 +153,12 @@ def test_task_is_frozen():
     with pytest.raises(AttributeError):
         PAPER_TASK.k = 3  # type: ignore[misc]
     assert isinstance(PAPER_TASK, Task)
+
+
+def test_an_end_rule_given_over_a_task_keeps_the_tasks_hold(tmp_path):
+    from skilllib.pipeline._run import resolve_task
+
+    p = write(tmp_path, '[segment]\nend = "offset:5%"\nhold = 0.25\n')
+    assert resolve_task(p, end="offset:3%").end.hold_s == 0.25
+    assert resolve_task(p, end="offset:3%", hold=0.05).end.hold_s == 0.05
+    assert resolve_task(p).name == "task" and resolve_task(p, k=3).name == "task + options"  # the file's name
