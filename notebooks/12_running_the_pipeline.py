@@ -624,8 +624,9 @@ assert protos_broken != protos, "text: 'some prototypes change'"
 # few selected trials the silhouette range
 # shrinks to what they allow, and a `--k` larger than that is reduced, each said in a `note:` line and
 # in `messages`. With fewer than 3 selected trials the run still writes `results.json` with every
-# trial, skips the clustering and the transfer, and ends with exit status 3. A file with the example's
-# excluded trials and only two of its selected ones:
+# trial, skips the clustering and ends with exit status 3; each selected trial is then transferred as
+# it is, so that even one demonstration gets the robot's verdict (`transfer.selected_trials`). A file
+# with the example's excluded trials and only two of its selected ones:
 
 # %%
 excluded = trials[trials["status"] == "excluded"]
@@ -642,6 +643,7 @@ print(
     f"{few_results['n_selected']} selected; clusters: {'clusters' in few_results}, "
     f"transfer: {'transfer' in few_results}"
 )
+print("transferred as they are:", few_results["transfer"]["selected_trials"])
 
 # %% tags=["remove-cell"]
 # checks of the claims above (hidden on the site; nbmake fails if one breaks)
@@ -650,9 +652,11 @@ assert run.returncode == 3, "text: 'ends with exit status 3'"
 assert len(few_results["trials"]) == len(few_keys), (
     "text: 'results.json with every trial'"
 )
-assert "clusters" not in few_results and "transfer" not in few_results, (
-    "text: 'skips the clustering and the transfer'"
-)
+assert "clusters" not in few_results, "text: 'skips the clustering'"
+sel = few_keys[few_keys["status"] == "selected"]
+assert few_results["transfer"]["selected_trials"] == [
+    {"participant": p, "trial": t} for p, t in zip(sel["participant"], sel["trial"])
+], "text: 'each selected trial is then transferred as it is'"
 
 # %% [markdown]
 # ## Summary

@@ -3,7 +3,8 @@ on your recordings.
 
 Exit status: 0 on success; 2 for a file that cannot be read, a bad option or an output folder that cannot
 be used (one line on stderr, no traceback); 3 when the run finished but too few trials were selected to
-find prototypes (results.json is written, with every trial); 1 for an unexpected error (one line;
+find prototypes (results.json is written, with every trial, and one or two selected trials transferred as
+they are); 1 for an unexpected error (one line;
 ``--debug`` shows the traceback); 130 when interrupted (Ctrl-C), at any point; 141 when standard output
 was closed early (as ``| head``) or is full (``> /dev/full``), quietly; 143 when terminated (SIGTERM),
 cleaned up as after Ctrl-C.

@@ -94,6 +94,7 @@ class PipelineRun:
     sensitivity: SparcSensitivity | None = None
     assessments: list[Assessment] = field(default_factory=list)
     task: Task = PAPER_TASK
+    transferred: list[tuple[str, str]] = field(default_factory=list)  # (participant, trial) of each transfer
 
 
 def _is_shipped_cohort(given: Any) -> bool:
@@ -716,11 +717,37 @@ def compute(
         result.messages.append(capped_message(selected, params))
 
     sweep = None
+
+    def transfer_each(keys: list[tuple[Any, Any]], what: str) -> None:
+        """Transfer the trials ``keys`` (their segments) in order, numbered 0, 1, ...: results' transfer."""
+        for c in progress(list(range(len(keys))), "transfer"):
+            p, tr = keys[c]
+            seg = (
+                segment(recordings, p, tr, lowpass=lowpass, start=task.start, end=task.end)
+                if isinstance(recordings, Recordings)
+                else recordings.segment(p, tr, lowpass=lowpass)
+            )
+            result.profiles.append((seg.time, seg.speed))
+            result.transfers.append(transfer(arm, seg, cluster=c))
+            result.transferred.append((str(p), str(tr)))
+        result.assessments = assess(arm.robot, result.transfers, arm.dynamic_limits, sparc_params=params)
+        results["transfer"] = transfer_block(result.assessments)
+        result.messages += [  # an execution not simulated (a time scale beyond MAX_TIME_SCALE, ...) and why
+            f"{what} {a.transfer.cluster}: {a.note}" for a in result.assessments if a.note
+        ]
+
     if len(selected) < MIN_SELECTED:
         result.messages.append(
-            f"only {len(selected)} selected trial(s): clustering needs at least "
-            f"{MIN_SELECTED}; no prototypes and no transfer"
+            f"only {len(selected)} selected trial(s): clustering needs at least {MIN_SELECTED}; no prototypes"
+            + (
+                "; each selected trial is transferred as it is (transfer.prototypes, numbered in trial order)"
+                if len(selected)
+                else " and no transfer"
+            )
         )
+        if len(selected):  # one or two demonstrations: no clusters, but the robot's verdict on each
+            transfer_each(list(zip(selected["participant"], selected["trial"])), "selected trial")
+            results["transfer"]["selected_trials"] = [{"participant": p, "trial": t} for p, t in result.transferred]
     else:
         try:
             with warnings.catch_warnings(record=True) as caught:  # a shrunk k range: a note of the run
@@ -756,20 +783,7 @@ def compute(
         results["k"] = k_used
         results["scaling"] = scaling
         results["clusters"] = fit.to_dict()["clusters"]
-        for c in progress(list(range(k_used)), "transfer"):
-            p, tr = fit.prototypes.at[c, "participant"], fit.prototypes.at[c, "trial"]
-            seg = (
-                segment(recordings, p, tr, lowpass=lowpass, start=task.start, end=task.end)
-                if isinstance(recordings, Recordings)
-                else recordings.segment(p, tr, lowpass=lowpass)
-            )
-            result.profiles.append((seg.time, seg.speed))
-            result.transfers.append(transfer(arm, seg, cluster=c))
-        result.assessments = assess(arm.robot, result.transfers, arm.dynamic_limits, sparc_params=params)
-        results["transfer"] = transfer_block(result.assessments)
-        result.messages += [  # an execution not simulated (a time scale beyond MAX_TIME_SCALE, ...) and why
-            f"prototype of cluster {a.transfer.cluster}: {a.note}" for a in result.assessments if a.note
-        ]
+        transfer_each(list(zip(fit.prototypes["participant"], fit.prototypes["trial"])), "prototype of cluster")
     if variants and sweep is not None and "sparc" not in task.features:
         result.messages.append(
             f"no SPARC sensitivity analysis: the clustering features ({', '.join(task.features)}) do not include "
@@ -874,6 +888,7 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
         keep(fg.plot_silhouettes(run_.prototypes), "silhouettes_k")
         keep(fg.plot_clusters(run_.prototypes), "clusters_pv_sparc")
         keep(fg.plot_prototype_profiles(run_.profiles, run_.prototypes.prototypes), "prototype_speed_profiles")
+    if run_.transfers:  # the prototypes', or each selected trial's when too few to cluster
         keep(fg.plot_joint_velocities(run_.transfers), "joint_velocities")
         keep(fg.plot_frame_mapping(robot, run_.transfers[-1]), "frame_mapping")  # the fastest prototype
         for fig, name in fg.dynamics_figures(run_.assessments):

@@ -19,6 +19,18 @@ if TYPE_CHECKING:
     from ._run import PipelineRun
 
 
+def _verdict(tr, a) -> str:
+    """A transfer's verdict for a summary line: feasible, the time scaling it needs, or its flags."""
+    dyn = a.dynamics
+    if dyn.feasible:
+        return "feasible"
+    return (
+        f"needs time scaling x{dyn.time_scale:.2f} ({dyn.binding_limit} binds)"
+        if not tr.flags
+        else (f"{len(tr.flags)} flag(s)")
+    )
+
+
 def _described(row: dict, features: tuple[str, ...]) -> str:
     """A prototype by its clustering features: ``PV 0.52 m/s, SPARC -1.55`` (the paper's), ``LDLJ -9.4``."""
     from ..features import FEATURE_UNITS
@@ -107,16 +119,7 @@ def summary_lines(run_: PipelineRun) -> list[str]:
         lines.append(f"k = {fit.k} clusters ({fit.scaling} features), average silhouette {fit.silhouette:.3f}{how}")
         for c, (tr, a) in enumerate(zip(run_.transfers, run_.assessments)):
             p = {col: fit.prototypes.at[c, col] for col in fit.prototypes.columns}
-            dyn = a.dynamics
-            verdict = (
-                "feasible"
-                if dyn.feasible
-                else (
-                    f"needs time scaling x{dyn.time_scale:.2f} ({dyn.binding_limit} binds)"
-                    if not tr.flags
-                    else f"{len(tr.flags)} flag(s)"
-                )
-            )
+            verdict = _verdict(tr, a)
             peak = f"{np.nanmax(tr.peak_abs_qd):.2f}" if np.isfinite(tr.peak_abs_qd).any() else "n/a"
             lines.append(
                 f"  cluster {c}: size {fit.sizes[c]}, prototype participant {p['participant']} trial "
@@ -127,6 +130,18 @@ def summary_lines(run_: PipelineRun) -> list[str]:
         lines.append(
             f"feasibility on {run_.transfers[0].robot} ({limits_text(run_.assessments[0].dynamics)}): "
             f"{n_ok} of {fit.k} prototypes feasible as recorded"
+        )
+    elif run_.transfers:  # too few selected trials to cluster: each was transferred as it is
+        for c, (tr, a) in enumerate(zip(run_.transfers, run_.assessments)):
+            p, trial = run_.transferred[c]
+            peak = f"{np.nanmax(tr.peak_abs_qd):.2f}" if np.isfinite(tr.peak_abs_qd).any() else "n/a"
+            lines.append(
+                f"  selected trial {c}: participant {p} trial {trial}; peak |qd| {peak} rad/s, {_verdict(tr, a)}"
+            )
+        n_ok = sum(a.dynamics.feasible for a in run_.assessments)
+        lines.append(
+            f"feasibility on {run_.transfers[0].robot} ({limits_text(run_.assessments[0].dynamics)}): "
+            f"{n_ok} of {len(run_.transfers)} selected trials feasible as recorded (no clusters)"
         )
     if run_.sensitivity is not None:
         sens = run_.sensitivity

@@ -154,9 +154,16 @@ def test_fewer_than_three_selected_trials_exit_3_with_every_trial(tmp_path, caps
     assert code == 3, err
     res = _results(tmp_path / "o")
     assert res["n_selected"] == n and len(res["trials"]) == n + 2
-    assert not {"clusters", "silhouette", "transfer", "k"} & set(res)
+    assert not {"clusters", "silhouette", "k"} & set(res)
     assert any(f"only {n} selected" in m for m in res["messages"])
     assert "features.png" in res["figures"] and "clusters_pv_sparc.png" not in res["figures"]
+    if n == 0:
+        assert "transfer" not in res and "joint_velocities.png" not in res["figures"]
+    else:  # too few to cluster: each selected trial is transferred as it is, in trial order
+        selected = [(t["participant"], t["trial"]) for t in res["trials"] if t["status"] == "selected"]
+        got = [(e["participant"], e["trial"]) for e in res["transfer"]["selected_trials"]]
+        assert got == selected and len(res["transfer"]["prototypes"]) == n
+        assert "joint_velocities.png" in res["figures"]
 
 
 def test_identical_trials_cannot_be_clustered_exit_3(tmp_path, capsys, small_frame):

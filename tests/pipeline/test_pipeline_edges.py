@@ -107,7 +107,7 @@ def _draw(run_: pipeline.PipelineRun, mp: pytest.MonkeyPatch, synthetic: bool) -
 
 def _data_only(run_: pipeline.PipelineRun) -> pipeline.PipelineRun:
     """``run_`` without its clustering and transfer: only the data figures are drawn."""
-    return dataclasses.replace(run_, prototypes=None, sweep=None, sensitivity=None)
+    return dataclasses.replace(run_, prototypes=None, sweep=None, sensitivity=None, transfers=[], assessments=[])
 
 
 @pytest.fixture(scope="module")
@@ -136,6 +136,16 @@ def test_every_figure_is_written_under_its_name_png_and_svg(drawn):
     assert d["written"] == [f"{n}.{ext}" for n in names for ext in exts[n]]
     # without clustering, only the data figures and the segmentation pages
     assert _names(drawn["plain"]["saved"]) == [*DATA_FIGURES, *SEGMENTATION_PAGES]
+
+
+def test_transfers_without_clusters_get_the_transfer_figures_only(small_run):
+    """Too few selected trials to cluster, each transferred as it is: the data figures, then the transfer
+    and dynamics figures, no cluster figure (there is no clustering to draw)."""
+    alone = dataclasses.replace(small_run, prototypes=None, sweep=None, sensitivity=None)
+    with pytest.MonkeyPatch.context() as mp:
+        d = _draw(alone, mp, False)
+    transfer_figures = [n for n in CLUSTER_FIGURES if n in ("joint_velocities", "frame_mapping")]
+    assert _names(d["saved"]) == [*DATA_FIGURES, *SEGMENTATION_PAGES, *transfer_figures, *STUB_DYNAMICS]
 
 
 def test_figures_are_drawn_from_the_runs_own_objects(drawn, small_run):

@@ -1041,9 +1041,11 @@ def test_min_selected_is_the_edge_of_clustering(tmp_path, capsys, cohort_frame, 
             "k",
             "scaling",
             "clusters",
-            "transfer",
             "sparc_sensitivity",
         } & set(res)
+        assert [(e["participant"], e["trial"]) for e in res["transfer"]["selected_trials"]] == list(
+            zip(d.sel["participant"], d.sel["trial"])
+        )  # too few to cluster: each selected trial transferred as it is
         check_messages(res, d, pt.DEFAULT_K, **{"too few": 1, "no sensitivity": 1})
         assert any(m.startswith(f"only {pipeline.MIN_SELECTED - 1} selected trial(s)") for m in res["messages"])
     else:

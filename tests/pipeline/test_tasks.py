@@ -236,3 +236,31 @@ def test_the_sparc_sensitivity_follows_the_tasks_selection_and_features(capsys, 
     assert any(
         m.startswith("no SPARC sensitivity analysis: the clustering features (pv, ldlj)") for m in res["messages"]
     )
+
+
+@pytest.mark.skipif(not (ROOT / "data" / "real" / "pyomeca_markers_analogs.c3d").is_file(), reason="no real C3D")
+def test_one_real_reach_to_a_box_gets_a_verdict_without_clusters(capsys, tmp_path):
+    """The Vicon reach to a box (pyomeca): the load cell's channel goes negative under load
+    (--contact-below); one trial cannot be clustered (exit 3), but it is transferred as it is, with the
+    verdict the library gives its segment."""
+    import skilllib as sk
+
+    c3d = ROOT / "data" / "real" / "pyomeca_markers_analogs.c3d"
+    read = {"marker": "INDEX", "up_axis": "z", "contact_channel": "Voltage.2", "contact_below": True}
+    code, res, out, err = run_cli(
+        capsys, "--data", c3d, "--out", tmp_path / "o", "--marker", "INDEX", "--up-axis", "z",
+        "--contact-channel", "Voltage.2", "--contact-below", "--start", "speed:5%", "--select", "none",
+    )  # fmt: skip
+    assert code == 3, err
+    (trial,) = res["trials"]
+    assert trial["status"] == "selected" and trial["contact_speed"] < 0.1 * trial["pv"]  # slowed at the box
+    assert "clusters" not in res and res["transfer"]["selected_trials"] == [
+        {"participant": trial["participant"], "trial": trial["trial"]}
+    ]
+    rec = sk.load_recordings(c3d, **read)
+    seg = sk.segment(rec, *rec.keys()[0], start=sk.parse_start("speed:5%"), lowpass=sk.run_lowpass(rec))
+    arm = sk.get_robot("simple6")
+    want = sk.assess(arm.robot, [sk.transfer(arm, seg, cluster=0)], arm.dynamic_limits)[0].summary()
+    got = res["transfer"]["prototypes"][0]
+    assert got["peak_abs_qd"] == pytest.approx(want["peak_abs_qd"]) and got["feasible"] == want["feasible"]
+    assert "selected trial 0: participant pyomeca_markers trial analogs" in out
