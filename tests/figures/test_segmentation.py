@@ -215,12 +215,12 @@ def test_three_participants_every_column_has_a_time_axis(data):
 
 
 def test_a_run_writes_the_segmentation_pages_png_with_the_note(data, tmp_path, monkeypatch):
-    """_write_figures on a small run (its clustering left out): the pages segmentation-01.png, ... are
+    """_write_figures on a small run (its clustering and transfer left out): the pages segmentation-01.png, ... are
     written and listed; the synthetic-data note and the "Shown" note on them when capped. The other
     figures are not rendered (save replaced by a recorder)."""
     frame = _frame()
     run_ = pipeline.run(frame, None, k=2, write_figures=False)
-    run_ = dataclasses.replace(run_, prototypes=None, sweep=None, sensitivity=None)
+    run_ = dataclasses.replace(run_, prototypes=None, sweep=None, sensitivity=None, transfers=[], assessments=[])
     monkeypatch.setattr(fg, "save", lambda fig, out, name, dpi=150: [tmp_path / f"{name}.png"])
     texts = []
     real = fg.save_page
