@@ -493,7 +493,7 @@ kin_run, kin_res = skilllib_run(
 )  # fmt: skip
 kin = pd.DataFrame(kin_res["trials"])
 kin_valid = kin[kin.status != "invalid"]
-kin_reasons = kin.loc[kin.status == "invalid", "reason"].str.split(":").str[0]
+kin_reasons = kin.loc[kin.status == "invalid", "reason"].map(sk.reason_kind)
 print(f"{len(kin)} trials, {len(kin_valid)} valid; medians:",
       kin_valid[["pv", "sparc", "duration"]].median().round(3).to_dict())  # fmt: skip
 kin_reasons.value_counts()

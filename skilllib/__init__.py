@@ -307,6 +307,7 @@ __getattr__, __dir__, _names = _lazy.attach(
             "output_folder",
             "OutputError",
             "run",
+            "reason_kind",
             "RUN_FILES",
             "summary_lines",
             "TRIALS_IN_JSON_MAX",

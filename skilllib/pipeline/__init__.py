@@ -14,7 +14,7 @@ __getattr__, __dir__, __all__ = _lazy.attach(
         "_cli": ["main", "run_command"],
         "_output": ["check_output", "MANIFEST", "output_folder", "OutputError", "RUN_FILES"],
         "_run": ["DEFAULT_DATA", "OptionError", "run"],
-        "_summary": ["summary_lines"],
+        "_summary": ["reason_kind", "summary_lines"],
         "_trials_file": ["read_trials", "TRIALS_IN_JSON_MAX"],
     },
 )

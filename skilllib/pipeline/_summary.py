@@ -185,7 +185,18 @@ _REASON_KINDS = (
 
 def reason_kind(reason: str) -> str:
     """A trial's reason without its trial-specific parts (line numbers, values), so that like reasons are
-    counted together: ``"time goes backwards at line 12 (t = ...)"`` -> ``"time goes backwards"``."""
+    counted together: ``"time goes backwards at line 12 (t = ...)"`` -> ``"time goes backwards"``.
+
+    Parameters
+    ----------
+    reason : str
+        The reason (text), as in the feature table or results.json.
+
+    Returns
+    -------
+    str
+        Its kind (text).
+    """
     s = str(reason)
     for pattern, kind in _REASON_KINDS:
         m = re.match(pattern, s)
