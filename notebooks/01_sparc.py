@@ -338,9 +338,11 @@ assert largest_step == 60 / 16 < sk.SPARC_PARAMS["fc"], (
 # %% [markdown]
 # ## The minimum-jerk reference
 #
-# A single minimum-jerk movement is the smoothest movement the measure meets in practice. Its SPARC is
-# about $-1.40$ whatever its duration and sampling rate; the small differences come from where the
-# frequency grid falls relative to the threshold crossing. The value for a 1 s movement at 100 Hz is
+# A single minimum-jerk movement is the usual reference of smoothness: the profile that minimises the
+# squared jerk of a point-to-point movement. It is not SPARC's maximum: two submovements that still
+# overlap score a little higher (next section). Its SPARC is about $-1.40$ whatever its duration and
+# sampling rate; the small differences come from where the frequency grid falls relative to the
+# threshold crossing. The value for a 1 s movement at 100 Hz is
 # the authors' published $-1.4058$.
 
 # %%

@@ -95,8 +95,9 @@ assert 0.75 < c_fc["ARI"] < 0.9 and c_fc["prototypes kept"] <= 1, (
 # %% [markdown]
 # With 10 Hz the cap ends the bands of three quarters of the selected trials, with 20 Hz of one in six.
 # SPARC changes for most trials, on average by more than half its spread across trials, and always upwards
-# (smoother) where the 10 Hz cap cuts a band short ([](#fig-sensitivity), left). The partition changes
-# less (adjusted Rand index about 0.8): K-means on raw features cuts the cloud mainly along PV, which does
+# (a shorter arc, not a smoother movement) where the 10 Hz cap cuts a band short
+# ([](#fig-sensitivity), left). The partition changes less (adjusted Rand index about 0.8; in most other
+# draws of the synthetic model it changes more, chapter 16): K-means on raw features cuts the cloud mainly along PV, which does
 # not depend on SPARC, so only trials near the borders change cluster. The prototypes are another
 # matter: a prototype is the one trial nearest its centre, and shifting every trial's SPARC moves both
 # the centre and the nearest trial. At most one of the six prototypes is the same trial under both
@@ -111,7 +112,7 @@ tab = sens.sparc_table()
 up = tab[tab[f"capped | {alt.label}"]]
 at_10, at_20 = up[f"sparc | {alt.label}"], up[f"sparc | {ref.label}"]
 print(
-    f"trials capped at 10 Hz: {len(up)}; of them with a higher (smoother) SPARC "
+    f"trials capped at 10 Hz: {len(up)}; of them with a higher SPARC "
     f"than at 20 Hz: {int((at_10 > at_20 + 1e-9).sum())}"
 )
 for run in sens.runs:
@@ -182,7 +183,8 @@ print(f"ARI, raw vs standardised partition (k = 6): {ari_std:.3f}")
 
 # %% [markdown]
 # Standardised, SPARC weighs as much as PV, and the partition is a different one: the adjusted Rand
-# index with the raw partition is below 0.5, and clusters of similar speed now differ by smoothness.
+# index with the raw partition is below 0.5, and clusters of similar speed now differ by SPARC (on
+# these segments mostly by their contact ratio, chapter 3, [](#sparc-on-segments)).
 
 # %% [markdown]
 # Do the two scalings pick different prototypes? Side by side, both numbered by centre PV (the same

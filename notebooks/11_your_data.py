@@ -263,6 +263,8 @@ assert ((valid["status"] == "selected") == in_window).all(), (
 # %%
 adl_dir = work / "ue-adl"
 adl_dir.mkdir()
+adl_all = sorted(Path("../data/real/ue-adl-forward-reach").glob("*.csv.gz"))
+print(f"{len(adl_all)} Nexus exports in data/real/ue-adl-forward-reach")
 for name in ["ADL001FL1", "ADL001FR1", "ADL002FR2", "ADL005FR3"]:
     shutil.copy(f"../data/real/ue-adl-forward-reach/{name}.csv.gz", adl_dir)
 adl = sk.load_recordings(
@@ -288,6 +290,7 @@ pd.DataFrame(adl_rows).round(3)
 # checks of the claims above and below (hidden on the site; nbmake fails if one breaks)
 adl_table = pd.DataFrame(adl_rows)
 assert len(adl) == 4 and round(adl.fs) == 100, "text: 'four ... at 100 Hz'"
+assert len(adl_all) == 160, "text: '160 are Vicon Nexus exports'"
 assert adl_table["peak fingertip speed (m/s)"].between(0.3, 1.1).all(), (
     "text: 'peak speeds of a comfortable reach'"
 )

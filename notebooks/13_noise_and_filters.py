@@ -243,7 +243,7 @@ assert 0 < 1 - cs.loc[1000] / cs.loc[60] < 0.1, (
 # forward-backward filter), `--lowpass none` switches it off.
 #
 # Here is a VR-style log as such a logger writes it: its own column names, millimetres, z up, time in
-# seconds with ±1 ms of frame jitter and about one frame in 200 dropped, 120 Hz, and 0.5 mm of white
+# seconds with ±1 ms of frame jitter and about 0.5 % of the frames dropped, 120 Hz, and 0.5 mm of white
 # position noise. The movements are the generator's (four participants, 40 trials each); the same
 # movements without noise are kept to compare with:
 

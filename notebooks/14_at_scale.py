@@ -28,7 +28,9 @@
 # ```{note}
 # The corpora here are synthetic: the book's cohort, and for the benchmark the cohort tiled with jittered
 # copies (`benchmarks/corpus.py`: each copy's trials scaled a little in amplitude and shifted, the
-# participants renamed). The timings were measured on one shared 2-core virtual machine.
+# participants renamed). The timings were measured on one shared 2-core virtual machine, at the commit
+# printed with them below: they are a record of that commit, not of the code that built this page
+# (`benchmarks/bench_scale.py` measures them again).
 # ```
 
 # %% tags=["hide-input"]
@@ -62,9 +64,9 @@ table = sk.trial_features(rec)
 # [`sk.trial_features`](#skilllib.features.trial_features) gathers the trials whose approaches have the same
 # length into one block and runs every step on the block along its rows. A numpy reduction along the rows
 # of a block (the sums of LDLJ, the medians of the checks, the derivative's convolution) computes each
-# row exactly as it computes that row alone, so the block path gives the same bits (at rates of 240 Hz
-# and above, where the derivative's window has 9 samples or more, the first and last velocities of an
-# approach agree to about 1e-15 instead: scipy fits them by least squares). Below, the cohort's
+# row exactly as it computes that row alone, so the block path gives the same bits (at high sampling
+# rates, where the derivative's window is longer and scipy fits the first and last velocities of an
+# approach by least squares, those agree to rounding error instead). Below, the cohort's
 # feature table is recomputed one trial at a time and compared with the table of the vectorised path.
 
 # %%

@@ -11,5 +11,15 @@ __getattr__, __dir__, __all__ = _lazy.attach(
     submod_attrs={
         "_calibration": ["calibration_table", "seed_survey", "SURVEY_CSV", "survey_summary"],
         "_model": ["CohortModel", "generate_cohort", "model_table", "SEED"],
+        "_replication": [
+            "DRAW_QUANTITIES",
+            "draw_recordings",
+            "draw_results",
+            "read_replication",
+            "REPLICATION_CSV",
+            "replication_summary",
+            "replication_table",
+            "within_draws",
+        ],
     },
 )

@@ -134,6 +134,12 @@ class CohortModel:
         Half-width of the uniform jitter of the logged time stamps (s; 0: stamps on the grid). Each sample
         is taken at its jittered stamp (a VR or game-engine log); the jitter comes from its own generator
         per trial, so a jittered cohort holds the same movements as the regular one.
+    phase : float
+        Sampling phase, a fraction of a sample interval in [0, 1) (dimensionless): sample ``i`` of a trial
+        is taken at ``(i + phase) / fs`` s instead of ``i / fs``. The movements, the noise (drawn per sample
+        index) and the number of samples are those of ``phase = 0``; only the instants at which the same
+        continuous movement is sampled move (the sampling-phase experiment of the book's SPARC-measurement
+        chapter). ``phase = 0`` is the committed cohort, bit for bit.
     """
 
     n_participants: int = 10
@@ -170,6 +176,11 @@ class CohortModel:
     wall_tau: float = 0.01  # s, time constant of the critically damped virtual wall
     press_depth: tuple[float, float] = (0.0002, 0.001)  # m, static penetration while resting on the surface
     stamp_jitter: float = 0.0  # s, half-width of the time stamps' uniform jitter (0: on the grid)
+    phase: float = 0.0  # fraction of a sample interval in [0, 1): samples at (i + phase) / fs
+
+    def __post_init__(self) -> None:
+        if not 0.0 <= self.phase < 1.0:
+            raise ValueError(f"phase must be a fraction of a sample interval in [0, 1), got {self.phase!r}")
 
 
 @dataclass(frozen=True, eq=False)
@@ -353,6 +364,8 @@ def _trial(rng: np.random.Generator, m: CohortModel, p: dict, trial: int) -> tup
         return np.column_stack([x, y, z]) + sway
 
     t = np.arange(int(np.floor(t_end * m.fs)) + 1) / m.fs
+    if m.phase:  # the same samples (count, noise), taken a fraction of an interval later
+        t = (np.arange(len(t)) + m.phase) / m.fs
     if m.stamp_jitter:  # its own generator: the movements stay those of the regular cohort
         jitter = np.random.default_rng([trial, *map(ord, p["participant"])]).uniform(-1, 1, len(t) - 1)
         t = np.sort(np.r_[t[0], t[1:] + m.stamp_jitter * jitter])
@@ -464,6 +477,7 @@ PARAMETER_DOCS: dict[str, tuple[str, str]] = {
     "wall_tau": ("s", "time constant of the critically damped virtual wall"),
     "press_depth": ("m", "range of the static penetration while resting on the surface"),
     "stamp_jitter": ("s", "half-width of the uniform jitter of the logged time stamps (0: on the grid)"),
+    "phase": ("", "sampling phase: sample i taken at (i + phase) / fs, a fraction of an interval in [0, 1)"),
 }
 
 

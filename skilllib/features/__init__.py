@@ -11,6 +11,13 @@ import lazy_loader as _lazy
 __getattr__, __dir__, __all__ = _lazy.attach(
     __name__,
     submod_attrs={
+        "_contact": [
+            "CONTACT_ESTIMATORS",
+            "ContactEstimate",
+            "contact_speed_at",
+            "contact_speed_estimates",
+            "estimate_errors",
+        ],
         "_dask": ["cluster_features"],
         "_filtering": [
             "choose_lowpass",
@@ -74,6 +81,22 @@ __getattr__, __dir__, __all__ = _lazy.attach(
             "movement_pieces",
             "NOISE_FACTOR",
             "split_movements",
+        ],
+        "_uncertainty": [
+            "cluster_agreement",
+            "ClusterAgreement",
+            "phase_spread",
+            "sparc_by_estimator",
+            "sparc_shift_spread",
+            "spread_share",
+            "SUBSAMPLE_SHIFTS",
+        ],
+        "_submovements": [
+            "correction_measures",
+            "CORRECTION_MEASURES",
+            "dip_depth",
+            "PEAK_NOISE_FACTOR",
+            "speed_peaks",
         ],
         "_table": [
             "approaches",

@@ -56,6 +56,7 @@ import pandas as pd
 from .. import smoothness
 from ..recordings import ID_COLUMNS, Recordings, first_true, sort_ids
 from . import _vectorised as batch
+from ._contact import CONTACT_ESTIMATORS, contact_speed_estimates
 from ._filtering import NO_FILTER, Lowpass, choose_lowpass, measure_rest_noise
 from ._rules import PAPER_END, PAPER_START, EndRule, StartRule
 from ._segmentation import (
@@ -302,6 +303,7 @@ def trial_features(
     min_samples: int = MIN_SEGMENT_SAMPLES,
     lowpass: str | float | Lowpass | None = "auto",
     progress: Callable[[Sequence[Any], str], Iterable[Any]] | None = None,
+    contact_estimator: str = "last-sample",
 ) -> pd.DataFrame:
     """One row per trial of ``recordings`` (all of them, in their order) with its features and status.
 
@@ -348,6 +350,11 @@ def trial_features(
         recorded in ``attrs["lowpass"]`` of the result.
     progress : callable or None
         ``progress(items, description)`` may wrap the loop over trials (e.g. tqdm; description text).
+    contact_estimator : str
+        How ``contact_speed`` (and so the selection) is estimated (text): ``"last-sample"`` (the speed at
+        the last sample before the end, the default) or ``"midpoint"`` / ``"crossing"`` with a cubic fit
+        to the last 4 samples (:func:`skilllib.features.contact_speed_at`); recorded in
+        ``attrs["contact_estimator"]``. A trial it cannot estimate becomes invalid with the reason.
 
     Returns
     -------
@@ -355,6 +362,8 @@ def trial_features(
         The feature table (columns and units above).
     """
     rec = _as_recordings(recordings)
+    if contact_estimator not in CONTACT_ESTIMATORS:
+        raise ValueError(f"unknown contact_estimator {contact_estimator!r}; expected one of {CONTACT_ESTIMATORS}")
     start = start_rule(start, onset_speed)
     params = {**SPARC_PARAMS, **(sparc_params or {})}
     filt = run_lowpass(rec, lowpass, end=end)
@@ -392,6 +401,8 @@ def trial_features(
     reason = np.where(ok, seg.reason, trials["reason"].to_numpy(dtype=object)).astype(object)
     status = np.full(n_all, "invalid", dtype=object)
     cs = seg.contact_speed
+    if contact_estimator != "last-sample":
+        done, cs = _estimated_contact_speed(rec, keys, done, seg.t_contact, reason, contact_estimator)
     lo, hi = window if window is not None else (-np.inf, np.inf)
     inside = done & (cs >= lo) & (cs <= hi)
     status[inside] = "selected"
@@ -423,14 +434,57 @@ def trial_features(
         columns=list(FEATURE_COLUMNS),
     )
     out.loc[~done, "n"] = pd.NA
+    lost = seg.segmented & ~done  # segmented, but the contact estimator could not estimate it
+    if lost.any():
+        out.loc[lost, ["sparc_capped"]] = pd.NA
+        out.loc[lost, [*_FEATURES_OF_SEGMENT]] = np.nan
     if filt.borderline and not filt.note:  # what the other choice would change (skilllib.features._filtering)
         other = NO_FILTER if filt.cutoff_hz is not None else Lowpass(filt.alternative_hz, "given", fs=rec.fs)
         if other.cutoff_hz is not None or filt.cutoff_hz is not None:
             kw = dict(sparc_params=sparc_params, window=window, start=start, end=end, min_samples=min_samples)
+            kw["contact_estimator"] = contact_estimator
             filt = replace(filt, note=borderline_note(filt, out, trial_features(rec, lowpass=other, **kw)))
     out.attrs["lowpass"] = filt
     out.attrs["start"], out.attrs["end"] = start, end
+    out.attrs["contact_estimator"] = contact_estimator
     return out
+
+
+#: The columns of a segmented trial's features that are NaN when it is not (numbers; ``n`` and
+#: ``sparc_capped`` are nullable and set to NA apart).
+_FEATURES_OF_SEGMENT = (
+    "pv",
+    "contact_speed",
+    "duration",
+    "sparc",
+    "sparc_band_end_hz",
+    "ldlj",
+    "peak_acc",
+    "path_length",
+    "t_onset",
+    "t_contact",
+)
+
+
+def _estimated_contact_speed(
+    rec: Recordings, keys: list, done: np.ndarray, t_end: np.ndarray, reason: np.ndarray, method: str
+) -> tuple[np.ndarray, np.ndarray]:
+    """The segmented trials (bool) and their contact speeds (m/s) by ``method`` (cubic, 4 samples); a
+    trial it cannot estimate is no longer segmented and gets the estimator's reason in ``reason``."""
+    rows = pd.DataFrame(
+        {
+            "participant": [k[0] for k in keys],
+            "trial": [k[1] for k in keys],
+            "status": np.where(done, "ok", "invalid"),
+            "reason": reason,
+            "t_contact": np.where(done, t_end, np.nan),
+        }
+    )
+    est = contact_speed_estimates(rec, rows, method=method, degree=3, n_fit=4)
+    cs = est["contact_speed"].to_numpy(dtype=float)
+    lost = done & ~np.isfinite(cs)
+    reason[lost] = "contact speed: " + est["reason"].to_numpy(dtype=object)[lost]
+    return done & ~lost, cs
 
 
 def borderline_note(lowpass: Lowpass, features: pd.DataFrame, other: pd.DataFrame) -> str:

@@ -4,7 +4,10 @@ Every function takes data (arrays, DataFrames, result objects) and returns a mat
 :func:`save` writes it as PNG and SVG. Axes carry units. One submodule per chapter's idea:
 ``smoothness`` (SPARC), ``experiment`` (the data), ``clusters`` (prototypes), ``robot`` (transfer),
 ``dynamics`` (accelerations, torques, execution, time scales), ``recordings`` (noise and
-filters), ``scale`` (time and memory against N), ``segmentation`` (every trial's segmentation, page by page).
+filters), ``scale`` (time and memory against N), ``segmentation`` (every trial's segmentation, page by page),
+``measures`` (clusterings on measures of corrections), ``measurement`` (SPARC's measurement spread),
+``draws`` (the headline results over many draws of the cohort), ``limits`` (the robot verdicts against
+the assumed limits).
 This package may import the other skilllib modules; none of them imports it.
 """
 
@@ -22,6 +25,7 @@ from .clusters import (
     plot_sparc_sensitivity,
     plot_stability,
 )
+from .draws import plot_draws
 from .dynamics import (
     dynamics_figures,
     plot_executed_speed,
@@ -45,6 +49,9 @@ from .experiment import (
     threshold_bound,
     trials_window,
 )
+from .limits import plot_limit_sensitivity
+from .measurement import plot_estimator_spread, plot_phase_clusters, plot_phase_spread, plot_spread_estimate
+from .measures import plot_measure_clusters
 from .recordings import plot_residual_analysis, plot_sparc_against_reference
 from .robot import (
     JOINT_COLORS,
@@ -124,5 +131,12 @@ __all__ = [
     "plot_executed_speed",
     "plot_time_scales",
     "dynamics_figures",
+    "plot_limit_sensitivity",
+    "plot_draws",
+    "plot_measure_clusters",
     "plot_scaling",
+    "plot_phase_spread",
+    "plot_spread_estimate",
+    "plot_estimator_spread",
+    "plot_phase_clusters",
 ]

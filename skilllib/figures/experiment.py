@@ -541,10 +541,20 @@ def plot_feature_overview(
     return fig
 
 
-def plot_estimates_vs_truth(features: pd.DataFrame, truth: pd.DataFrame) -> plt.Figure:
+def plot_estimates_vs_truth(
+    features: pd.DataFrame,
+    truth: pd.DataFrame,
+    contact_estimates: pd.DataFrame | None = None,
+    *,
+    label: str = "new estimate",
+    window: tuple[float, float] | None = CONTACT_WINDOW,
+) -> plt.Figure:
     """Features estimated from the 60 Hz samples against the generator's noise-free truth.
 
-    Peak speed, contact speed (m/s) and duration (s); the identity line dashed.
+    Peak speed, contact speed (m/s) and duration (s); the identity line dashed. With ``contact_estimates``
+    a second row compares them with the feature table's contact speed (the last sample before contact):
+    both against the true contact speed, and the error of each against the true contact speed, with the
+    selection window's bounds, where an error moves a trial across a bound.
 
     Parameters
     ----------
@@ -554,21 +564,62 @@ def plot_estimates_vs_truth(features: pd.DataFrame, truth: pd.DataFrame) -> plt.
     truth : pandas.DataFrame
         The generator's ground truth per trial (:func:`skilllib.cohort.generate_cohort`: speeds in m/s,
         times in s).
+    contact_estimates : pandas.DataFrame or None
+        Other estimates of the contact speed (:func:`skilllib.features.contact_speed_estimates`: ids and
+        ``contact_speed`` in m/s); None: the first row only.
+    label : str
+        The name of those estimates in the legend (text).
+    window : tuple of float or None
+        The selection window (m/s), its bounds drawn in the second row; None: none.
 
     Returns
     -------
     matplotlib.figure.Figure
-        The figure; three panels (m/s, m/s, s).
+        The figure; three panels (m/s, m/s, s), and two more (m/s) with ``contact_estimates``.
     """
     m = features[features["status"] != "invalid"].merge(truth, on=["participant", "trial"], suffixes=("", "_true"))
     m = m.assign(duration_true=m["t_contact_true"] - m["t_onset_true"])
-    fig, axs = plt.subplots(1, 3, figsize=(10, 3.3))
-    for ax, (c, label) in zip(
-        axs, [("pv", "PV (m/s)"), ("contact_speed", "contact speed (m/s)"), ("duration", "duration (s)")]
+    rows = 1 if contact_estimates is None else 2
+    fig, axs = plt.subplots(rows, 3, figsize=(10, 3.3 * rows), squeeze=False)
+    for ax, (c, name) in zip(
+        axs[0], [("pv", "PV (m/s)"), ("contact_speed", "contact speed (m/s)"), ("duration", "duration (s)")]
     ):
         ax.scatter(m[f"{c}_true"], m[c], s=3, color="0.35")
         lim = [0, max(m[c].max(), m[f"{c}_true"].max()) * 1.05]
         ax.plot(lim, lim, "--", color="tab:red", lw=0.8)
-        ax.set(xlim=lim, ylim=lim, xlabel=f"true {label}", ylabel=f"estimated {label}")
+        ax.set(xlim=lim, ylim=lim, xlabel=f"true {name}", ylabel=f"estimated {name}")
+    if contact_estimates is not None:
+        _contact_rows(axs[1], m, contact_estimates, label, window)
     fig.tight_layout()
     return fig
+
+
+def _contact_rows(
+    axs: np.ndarray, m: pd.DataFrame, est: pd.DataFrame, label: str, window: tuple[float, float] | None
+) -> None:
+    """The second row of :func:`plot_estimates_vs_truth`: both estimates against the truth, their errors."""
+    e = m.merge(est[["participant", "trial", "contact_speed"]], on=["participant", "trial"], suffixes=("", "_new"))
+    v = e["contact_speed_true"].to_numpy()
+    old, new = e["contact_speed"].to_numpy(), e["contact_speed_new"].to_numpy()
+    styles = [("last sample before contact", old, "0.6"), (label, new, "tab:blue")]
+    a, b, c = axs
+    lim = [0, max(np.nanmax(old), np.nanmax(new), v.max()) * 1.05]
+    for name, x, col in styles:
+        a.scatter(v, x, s=3, color=col, alpha=0.7, label=name)
+        b.scatter(v, x - v, s=3, color=col, alpha=0.7)
+    a.plot(lim, lim, "--", color="tab:red", lw=0.8)
+    a.set(xlim=lim, ylim=lim, xlabel="true contact speed (m/s)", ylabel="estimated contact speed (m/s)")
+    a.legend(fontsize=7, frameon=False, loc="upper left", markerscale=3)
+    b.axhline(0, color="tab:red", lw=0.8, ls="--")
+    b.set(xlim=lim, xlabel="true contact speed (m/s)", ylabel="estimate - truth (m/s)")
+    for ax in (a, b) if window is not None else ():
+        for bound in window:
+            ax.axvline(bound, color="tab:green", lw=0.8, ls=":")
+    bins = np.linspace(-0.5, 0.5, 51)
+    for name, x, col in styles:
+        rmse = np.sqrt(np.nanmean((x - v) ** 2))
+        c.hist(
+            np.clip(x - v, bins[0], bins[-1]), bins=bins, color=col, alpha=0.6, label=f"{name}\n(RMSE {rmse:.3f} m/s)"
+        )
+    c.set(xlabel="estimate - truth (m/s)", ylabel="trials", ylim=(0, c.get_ylim()[1] * 1.4))  # room for the legend
+    c.legend(fontsize=7, frameon=False, loc="upper left")

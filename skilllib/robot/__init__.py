@@ -41,6 +41,16 @@ __getattr__, __dir__, __all__ = _lazy.attach(
         "_feasibility": ["assess", "assess_one", "Assessment", "limits_text", "MAX_TIME_SCALE", "transfer_block"],
         "_ik": ["IK_CHAIN", "IK_RESTARTS", "IKAnswer", "pose_residual", "solve_ik"],
         "_reach": ["joint_axes", "reach_shell", "REACH_TOL_M", "shoulder_point"],
+        "_sensitivity": [
+            "feasible_counts",
+            "limit_margin",
+            "limit_margins",
+            "limit_sensitivity",
+            "LIMIT_UNITS",
+            "LimitMargin",
+            "verdict_range",
+            "VerdictRange",
+        ],
         "_velocity": [
             "apply_time_scale",
             "BRANCH_JUMP_RAD",
