@@ -21,6 +21,11 @@ Each quantity is computed as the chapter that reports it computes it (the column
 * the share of SPARC's variance explained by the contact ratio alone and by the generator's corrections
   alone (chapter 3, "What SPARC measures on these segments": :func:`skilllib.prototypes.with_covariates`,
   :func:`skilllib.prototypes.variance_explained`, corrected = ``truth.n_corrections > 0``);
+* the contact speed's estimators against the generator's truth over all trials (chapter 3, "What 60 Hz can
+  tell": :func:`skilllib.features.contact_speed_estimates`, :func:`skilllib.features.estimate_errors`): for
+  the feature table's last sample and the ``"midpoint"`` and ``"crossing"`` estimates, the bias, SD, RMSE,
+  95th percentile and largest absolute error (m/s), the selection flips against the truth, and the trials in
+  the selection window by each and by the truth;
 * per arm of :data:`skilllib.robot.ROBOT_NAMES`, how many of the six prototypes are feasible as recorded
   under the velocity limits alone and under every limit the arm carries (chapters 5 and 9, the pipeline:
   :func:`skilllib.robot.transfer`, :func:`skilllib.robot.assess`).
@@ -35,7 +40,16 @@ from typing import Any
 
 import pandas as pd
 
-from ..features import Lowpass, run_lowpass, segment, select, trial_features
+from ..features import (
+    CONTACT_WINDOW,
+    Lowpass,
+    contact_speed_estimates,
+    estimate_errors,
+    run_lowpass,
+    segment,
+    select,
+    trial_features,
+)
 from ..prototypes import (
     participant_dependence,
     silhouette_sweep,
@@ -55,6 +69,18 @@ REPLICATION_CSV = Path(__file__).with_name("replication.csv")
 K = 6
 #: The SPARC cut-off the sensitivity ARI compares with the book's 20 Hz (Hz; chapter 6).
 FC_OTHER = 10.0
+#: The contact-speed estimators compared with the truth (column prefix: the method of
+#: :func:`skilllib.features.contact_speed_estimates`; ``sample`` is the feature table's last sample).
+CONTACT_METHODS = {"sample": "last sample", "midpoint": "midpoint", "crossing": "crossing"}
+#: The error measures of each estimator (column suffix: what :func:`skilllib.features.estimate_errors` reports).
+CONTACT_MEASURES = {
+    "bias": "bias",
+    "sd": "SD",
+    "rmse": "RMSE",
+    "p95": "95th pct |error|",
+    "max": "max |error|",
+    "flips": "flips",
+}
 
 
 def _quantities() -> dict[str, str]:
@@ -77,6 +103,12 @@ def _quantities() -> dict[str, str]:
     names = {"simple6": "Simple6", "ur5": "UR5", "puma560": "Puma 560", "panda": "Panda"}
     q.update({f"feasible_velocity_{a}": f"{names.get(a, a)}: feasible of 6, velocity limits" for a in ROBOT_NAMES})
     q.update({f"feasible_{a}": f"{names.get(a, a)}: feasible of 6, every limit" for a in ROBOT_NAMES})
+    for m, label in CONTACT_METHODS.items():
+        for k, measure in CONTACT_MEASURES.items():
+            unit = "" if k == "flips" else " (m/s)"
+            q[f"contact_{m}_{k}"] = f"contact speed, {label}: {measure}{unit}"
+        q[f"in_window_{m}"] = f"trials in the 0.3-0.7 m/s window, {label}"
+    q["in_window_true"] = "trials in the 0.3-0.7 m/s window, true contact speed"
     q["all_targets"] = "every calibration target met"
     return q
 
@@ -169,7 +201,25 @@ def draw_results(seed: int, model: CohortModel | None = None) -> dict[str, Any]:
         "r2_corrections": float(r2["corrected"]),
     }
     out.update(_feasibility(rec, fit.prototypes, filt))
+    out.update(_contact_errors(rec, feats, truth))
     out["all_targets"] = bool(calibration_table(feats, sweep)["met"].all())
+    return out
+
+
+def _contact_errors(rec: Recordings, feats: pd.DataFrame, truth: pd.DataFrame) -> dict[str, float]:
+    """Per contact-speed estimator, its errors against the truth (m/s; flips and counts of trials)."""
+    keys = ["participant", "trial"]
+    true = feats[keys].merge(truth[[*keys, "contact_speed"]], on=keys, how="left")["contact_speed"].to_numpy()
+    estimates = {"sample": feats["contact_speed"].to_numpy(dtype=float)}
+    for m in ("midpoint", "crossing"):
+        estimates[m] = contact_speed_estimates(rec, feats, method=m)["contact_speed"].to_numpy(dtype=float)
+    lo, hi = CONTACT_WINDOW
+    out: dict[str, float] = {}
+    for m, est in estimates.items():
+        err = estimate_errors(est, true)
+        out.update({f"contact_{m}_{k}": float(err[measure]) for k, measure in CONTACT_MEASURES.items()})
+        out[f"in_window_{m}"] = int(((est >= lo) & (est <= hi)).sum())
+    out["in_window_true"] = int(((true >= lo) & (true <= hi)).sum())
     return out
 
 

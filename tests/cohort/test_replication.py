@@ -162,3 +162,24 @@ def test_within_draws_says_inside_on_the_bounds_and_outside_beyond(small):
     assert w.loc["down", "sds"] < 0  # below the draws
     assert (w.loc["up", "book"], w.loc["up", "median"], w.loc["up", "paper"]) == (3, 3, 5)
     assert not rep.within_draws(small, {"up": 0.99}, seed=12).loc["up", "within"]
+
+
+@pytest.mark.slow
+def test_book_row_contact_errors_equal_a_direct_computation(fresh, book):
+    """The last sample's errors against the truth, computed here with numpy alone: a swapped estimate
+    and truth flips the bias's sign; a window test on the wrong column changes the counts."""
+    rec, feats, sel, fit = book
+    truth = generate_cohort(SEED).truth[["participant", "trial", "contact_speed"]]
+    m = feats.merge(truth, on=["participant", "trial"], suffixes=("", "_true"))
+    err = m["contact_speed"] - m["contact_speed_true"]
+    assert fresh["contact_sample_bias"] == pytest.approx(err.mean(), abs=TOL)
+    assert fresh["contact_sample_max"] == pytest.approx(err.abs().max(), abs=TOL)
+    inside = m["contact_speed"].between(0.3, 0.7)
+    inside_true = m["contact_speed_true"].between(0.3, 0.7)
+    assert fresh["contact_sample_flips"] == (inside != inside_true).sum()
+    assert fresh["in_window_sample"] == len(sel) == inside.sum()
+    assert fresh["in_window_true"] == inside_true.sum()
+    # the new estimates are estimates: their errors are finite and they select other trials
+    for method in ("midpoint", "crossing"):
+        assert 0 < fresh[f"contact_{method}_rmse"] < 1
+        assert fresh[f"in_window_{method}"] != fresh["in_window_sample"]
