@@ -10,6 +10,28 @@ import matplotlib.pyplot as plt
 CLUSTER_COLORS = plt.get_cmap("tab10").colors
 
 
+def unique_legend_entries(axes) -> tuple[list, list[str]]:
+    """The legend handles and labels of several axes, each label once, in the order first met.
+
+    Parameters
+    ----------
+    axes : iterable of matplotlib.axes.Axes
+        The axes whose artists carry labels (text).
+
+    Returns
+    -------
+    tuple of (list, list of str)
+        The handles and their labels (text), for one legend of the whole figure.
+    """
+    handles, labels = [], []
+    for ax in axes:
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            if lab not in labels:
+                handles.append(h)
+                labels.append(lab)
+    return handles, labels
+
+
 #: A plot with more points than this (scatter points, line vertices) has its data drawn as an image in the SVG.
 DENSE = 20_000
 

@@ -10,6 +10,7 @@ import numpy as np
 
 from ..robot import LIMIT_NAMES, Assessment, JointDynamics
 from ..smoothness import sparc
+from ._common import unique_legend_entries
 from .robot import JOINT_COLORS
 
 #: Colours of the three limits in the time-scale figure.
@@ -253,12 +254,7 @@ def plot_executed_speed(
         ax.set_xlabel("time from start (s)")
     for ax in axs[:, 0]:
         ax.set_ylabel("tool speed (m/s)")
-    handles, labels = [], []
-    for ax in axs.flat:
-        for h, lab in zip(*ax.get_legend_handles_labels()):
-            if lab not in labels:
-                handles.append(h)
-                labels.append(lab)
+    handles, labels = unique_legend_entries(axs.flat)
     fig.legend(
         handles,
         labels,
@@ -353,12 +349,7 @@ def plot_time_scales(by_arm: Mapping[str, Sequence[JointDynamics]]) -> plt.Figur
     axs[0, 0].set_ylim(0.9, top * 1.08 + 0.1)
     for ax in axs[:, 0]:
         ax.set_ylabel("time scale s")
-    handles, labels = [], []
-    for ax in axs.flat:
-        for h, lab in zip(*ax.get_legend_handles_labels()):
-            if lab not in labels:
-                handles.append(h)
-                labels.append(lab)
+    handles, labels = unique_legend_entries(axs.flat)
     order = [labels.index(f"{name} alone") for name in LIMIT_NAMES if f"{name} alone" in labels]
     handles = [handles[i] for i in order] + [plt.Line2D([], [], color="k", lw=2)]
     labels = [labels[i] for i in order] + ["all limits (binding one named)"]

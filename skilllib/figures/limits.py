@@ -10,6 +10,7 @@ import numpy as np
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from ..robot import LIMIT_NAMES, Assessment, JointDynamics, feasible_counts, limit_margins, verdict_range
+from ._common import unique_legend_entries
 from .dynamics import LIMIT_COLORS
 
 #: Unit of each kind of limit, as the axes write it.
@@ -113,12 +114,7 @@ def plot_limit_sensitivity(
         ax.set_ylabel("prototypes executable as recorded", fontsize="small")
         ax.set_title(arm, fontsize="medium", loc="left")
         ax.grid(alpha=0.3)
-    handles, labels = [], []
-    for ax in axs.flat:
-        for h, lab in zip(*ax.get_legend_handles_labels()):
-            if lab not in labels:
-                handles.append(h)
-                labels.append(lab)
+    handles, labels = unique_legend_entries(axs.flat)
     order = sorted(range(len(labels)), key=lambda i: [f"{k} limits scaled" for k in LIMIT_NAMES].index(labels[i]))
     handles = [handles[i] for i in order] + [plt.Line2D([], [], color="k", marker="o", ls=":", lw=0.8)]
     labels = [labels[i] for i in order] + ["limits assumed"]
