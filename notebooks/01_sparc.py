@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     formats: ipynb,py:percent
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
@@ -34,7 +34,7 @@
 # true.
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 import functools
 
 import matplotlib.pyplot as plt
@@ -87,7 +87,7 @@ dips = {label: sk.speed_dip(v) for label, v in list(profiles.items())[1:]}
 for label, d in dips.items():
     print(f"{label}: lowest speed between the two peaks {d:.3f} m/s")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert abs(one.max() - 1.875 * 0.1 / 0.6) < 0.002, (
     "text: peak 1.875 D/T (to the sampling)"
@@ -133,7 +133,7 @@ print(
     f"V^ at 2 Hz = {np.interp(2, s.f, s.Mf):.4f}"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert s.Mf[0] == s.Mf.max() == 1.0, (
     "text: the normalised spectrum starts at 1, stays below"
@@ -170,7 +170,7 @@ for label, value in values.items():
 for delta in (0.3, 0.5):
     print(f"ripple period 1/Δ for Δ = {delta} s: {1 / delta:.1f} Hz")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 v1, v2, v3 = values.values()
 assert v1 > v2 > v3, "text: each further separation lengthens the arc (ranks the three)"
@@ -207,7 +207,7 @@ for label, s in noisy_spectra.items():
     print(f"{label:20s} cut-off {s.cutoff:5.2f} Hz   SPARC {s.sparc:.3f}")
 print(f"parameters: {dict(sk.SPARC_PARAMS)}")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 clean_, small, large = noisy_spectra.values()
 assert small.cutoff == clean_.cutoff, "caption: 1 % changes nothing"
@@ -288,7 +288,7 @@ print(
 )
 print(f"5. SPARC by hand {by_hand:.12f}\n   skilllib.sparc {sk.sparc(trial, FS):.12f}")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert abs(by_hand - sk.sparc(trial, FS)) < 1e-12, (
     "text: the sum by hand is skilllib's value"
@@ -305,7 +305,7 @@ integrand = np.sqrt((1 / w[-1]) ** 2 + (np.diff(band) / np.diff(w)) ** 2)
 riemann = -np.sum(integrand * np.diff(w))
 print(f"Riemann sum of the definition, in rad/s: {riemann:.12f}")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert abs(riemann - sk.sparc(trial, FS)) < 1e-12, "text: the same number"
 
@@ -326,7 +326,7 @@ print(
     f"SPARC = {single_1000:g}"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert single_60 == -1.0 and single_1000 == 0.0, (
     "text: exactly -1; 0 for a one-bin band"
@@ -360,7 +360,7 @@ ref = pd.DataFrame(
 print(ref.round(4))
 print(f"1 s at 100 Hz: {ref.loc[1.0, '100 Hz']:.10f}")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert ref.to_numpy().min() > -1.41, "text: about -1.40 at any T and rate"
 assert ref.to_numpy().max() < -1.39, "text: about -1.40 at any T and rate"
@@ -388,7 +388,7 @@ skf.plot_sparc_against(delays, drift, "delay between onsets (s)")
 drift_table = pd.DataFrame(drift, index=pd.Index(delays, name="delay (s)"))
 print(drift_table.iloc[::4].round(3))
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 two_d, three_d = drift_table["two submovements"], drift_table["three submovements"]
 assert two_d[0.2] > two_d[0.0], "text: at 0.2 s a little smoother than one submovement"
@@ -426,7 +426,7 @@ for c in (1.5, 2, 4):
         f"difference {stretched[c]:+.1e}"
     )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert all(d == 0 for d in scaled.values()), "text: exactly amplitude invariant"
 assert max(abs(stretched[2]), abs(stretched[4])) < 1e-5, (
@@ -467,7 +467,7 @@ print(
     f"= (2 pi)^3 = {(2 * np.pi) ** 3:.1f}"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert abs(ratio_T - 8) < 0.1, "text: eight times"
 assert abs(sq[2.0]["Hz"] / sq[1.0]["Hz"] - 8) < 0.1, "text: eight times"
@@ -489,7 +489,7 @@ for d in (0.0, 0.3, 0.6, 1.0):
         f"squared version {drifting_sq[-1]:8.3f} (Hz)"
     )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert (np.diff(drifting_sq) < 0).all(), (
     "text: the squared value grows with the duration"
@@ -520,7 +520,7 @@ for T in (0.55, 0.8, 1.05):
 grid_table = pd.DataFrame.from_dict(grid, orient="index")
 print(grid_table.round(4))
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert np.ptp(grid_table["SPARC"]) < 0.01, "text: the shape keeps its SPARC"
 halving = grid_table["squared, padlevel 3"] / grid_table["squared, padlevel 4"]

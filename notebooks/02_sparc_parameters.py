@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     formats: ipynb,py:percent
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
@@ -33,7 +33,7 @@
 # not build when a statement stops being true.
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 import functools
 
 import matplotlib.pyplot as plt
@@ -76,7 +76,7 @@ for p, value in by_pad.items():
     print(f"padlevel {p}: nfft = {sk.nfft(two.size, p):5d}, SPARC = {value:.4f}")
 print(f"grid step without padding, 0.6 s at 60 Hz: {FS / one.size:.2f} Hz")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert round(FS / one.size, 2) == 1.67, (
     "text: a 0.6 s movement at 60 Hz, one point per 1.67 Hz"
@@ -114,7 +114,7 @@ for T in (0.3, 0.5, 1.0):
         f"(at 1000 Hz {s1000:.4f})"
     )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert max(map(abs, rate_gap)) < 5e-3, "text: 60 Hz within a few thousandths of 1000 Hz"
 
@@ -144,7 +144,7 @@ for label, s in cut_spectra.items():
         f"cut-off {s.cutoff:4.2f} Hz, SPARC {s.sparc:.3f}"
     )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 truncated = [s.sparc for label, s in cut_spectra.items() if label != "complete"]
 assert max(truncated) < cut_spectra["complete"].sparc - 0.1, (
@@ -178,7 +178,7 @@ print(
     f"(at {100 * fractions[gap.argmax()]:.0f} % of peak)"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert 0.01 < gap.max() < 0.1, "text: a few hundredths can be an effect of the sampling"
 assert round(sweep["60 Hz"].min(), 2) == -1.63, (
@@ -220,7 +220,7 @@ table = pd.DataFrame(
 )
 print(table.round(3))
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert (b10.band_end_hz < 10).all() and not b10.capped.any(), (
     "text: every band ends below 10 Hz"
@@ -272,7 +272,7 @@ print("SPARC at n = 40:", at_40)
 print("shortest n from which SPARC stays within 0.01 of that value:")
 print(stable)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 for r in ratios:
     b10_, b20_ = short[r, 10.0], short[r, 20.0]
@@ -335,7 +335,7 @@ print(
     f"(-sqrt(1 + 0.95^2) = {-np.hypot(1, 0.95):.3f})"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert round(-np.hypot(1, 0.95), 3) == round(bound, 3) == -1.379, (
     "text: -sqrt(1 + 0.95^2)"
@@ -374,7 +374,7 @@ for fc, feats in by_fc.items():
 cohort_table = pd.DataFrame(cohort_rows).T
 print(cohort_table.round(3))
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 c10, c20 = cohort_table.loc["fc = 10 Hz"], cohort_table.loc["fc = 20 Hz"]
 assert c10["selected capped"] > 0.6, "text: 10 Hz caps most selected trials' bands"
@@ -422,7 +422,7 @@ noise_share = speed_noise / selected.pv.median()
 print(f"the cohort's speed noise: {1e3 * speed_noise:.1f} mm/s per axis,")
 print(f"{noise_share:.2%} of the median peak speed of its selected trials")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert (noise_fc.loc[["1%", "3%"], "copies that differ"] == 0).all(), (
     "text: small noise, nothing"
@@ -475,7 +475,7 @@ for ax, fc in zip(axes, (10.0, 20.0)):
 # %%
 print(dict(sk.SPARC_PARAMS))
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert dict(sk.SPARC_PARAMS) == {"fc": 20.0, "amp_th": 0.05, "padlevel": 4}, (
     "text: the book uses fc = 20 Hz, threshold 0.05, padlevel 4"
@@ -500,7 +500,7 @@ gauss = np.exp(-5 * np.arange(-1, 1, 0.01) ** 2)
 g_sparc, g_ldlj = sk.sparc(gauss, 100.0), sk.ldlj(gauss, 100.0)
 print(f"SPARC {g_sparc:.5f}, LDLJ {g_ldlj:.5f}, |DLJ| {np.exp(-g_ldlj):.5f}")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert round(g_sparc, 5) == -1.41403, "text: the authors' published values"
 assert round(g_ldlj, 5) == -5.81636, "text: the authors' published values"
@@ -546,7 +546,7 @@ print(
 print(noise.round(3))
 print("change from no noise, relative to that:\n", relative.round(2).loc[[1, 3, 10]])
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert 0.55 < relative.loc[1, "LDLJ"] < 0.8, "text: LDLJ two thirds at 1 %"
 assert relative.loc[3, "LDLJ"] > 1, "text: LDLJ more than all of it at 3 %"

@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
 #       extension: .py
@@ -34,7 +34,7 @@
 # checked by a hidden cell of the notebook, so the book does not build when a statement stops being true.
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 import time
 
 import numpy as np
@@ -98,7 +98,7 @@ print(
 print("trial status after reading:", rec.trials.status.value_counts().to_dict())
 rec.frame.head()
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert (len(rec), rec.trials.participant.nunique()) == (1500, 10), (
     "text: 10 x 150 trials"
@@ -117,7 +117,7 @@ print(
     same,
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert same and synthetic.seed == 9, "text: 'seed 9', 'byte for byte'"
 
@@ -178,7 +178,7 @@ assert same and synthetic.seed == 9, "text: 'seed 9', 'byte for byte'"
 # %%
 sk.model_table()
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 cm = sk.CohortModel()
 assert cm.rtpv == (0.5, 0.6) and cm.rtpv_slope == -0.2, (
@@ -227,7 +227,7 @@ sweep = sk.silhouette_sweep(sk.select(feats), 2, 16, scaling="raw")
 calib = sk.calibration_table(feats, sweep)
 calib
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert calib["met"].all(), "text: the committed cohort meets every target (seed rule)"
 
@@ -256,7 +256,7 @@ print(
 met = sk.survey_summary(survey)
 met.to_frame("seeds meeting the target").T
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 per_target = met.drop(["seeds", "all targets"])
 assert set(per_target.nsmallest(2).index) == {"silhouette k = 6", "centre gap"}, (
@@ -307,7 +307,7 @@ shapes = pd.Series(
 )
 shapes.to_frame()
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert 2.5 < sd[0] / sd[1] < 3.5, "text: PV spreads about three times more than SPARC"
 cal, line, ball = shapes.to_numpy()
@@ -380,7 +380,7 @@ print(
     f"(onset threshold {1e3 * sk.ONSET_SPEED:.0f} mm/s)"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert round(1e3 * axis_sd, 1) == 1.3, "text: 1.3 mm/s"
 assert round(noise_only.median() / axis_sd, 2) == 1.54, "text: median about 1.54 s"
@@ -409,7 +409,7 @@ examples = skf.segmentation_examples(feats, speeds=(1.0, 0.2))
 shown = ["status", "reason", "pv", "contact_speed", "duration", "sparc", "sparc_capped"]
 feats.set_index(["participant", "trial"]).loc[examples, [*shown, "ldlj"]]
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert sk.MIN_SEGMENT_SAMPLES == 5 and sk.ONSET_SPEED == 0.05, (
     "text: 5 samples, 0.05 m/s"
@@ -460,7 +460,7 @@ print(
     f"SD {by_corr.loc[True, 'std']:.3f} m/s"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 window_width = sk.CONTACT_WINDOW[1] - sk.CONTACT_WINDOW[0]
 assert abs(pv_err) < 0.02, "text: PV agrees closely"
@@ -500,7 +500,7 @@ print(
     f"true contact ratio median {true_ratio:.3f}"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert (last["flips"], len(m)) == (178, 1500), "text: 178 of the 1500 trials"
 assert round(100 * last["flips"] / len(m)) == 12, "text: 12 %"
@@ -554,7 +554,7 @@ print(
 )
 errors.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 old, mid, new = (errors.loc["all trials"].loc[k] for k in estimates)
 measures = ["SD", "RMSE", "95th pct |error|", "max |error|", "flips"]
@@ -622,7 +622,7 @@ print(
     f"\nlast sample minus truth: {excess.min()} to {excess.max()} trials",
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert len(draws) == 24, "text: 24 draws"
 assert not beats["midpoint"].all() and not beats["crossing"].all(), (
@@ -686,7 +686,7 @@ print(
 )
 counts_by.to_frame()
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 lo, hi = counts_by.min(), counts_by.max()
 assert same, "text: the same movements"
@@ -749,7 +749,7 @@ print(
 by_len = sk.sparc_by_length(feats)
 by_len.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert (valid.n.min(), valid.n.max(), sel.n.min(), sel.n.max()) == (5, 34, 10, 28), (
     "text: 5-34 and 10-28 samples"
@@ -816,7 +816,7 @@ print(
 )
 what.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 w20, w10 = what["fc = 20 Hz"], what["fc = 10 Hz"]
 alone = [c for c in what.index if c.startswith("R²") and c != "R² all"]
@@ -870,7 +870,7 @@ first_excluded = feats.loc[feats.status == "excluded", "reason"].iloc[0]
 print(f"first excluded trial: {first_excluded}")
 counts.T
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert counts.loc["all", "selected"] == 680, "text: 680 selected"
 assert counts.loc["all", "invalid"] == 0, "text: none invalid"

@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     formats: ipynb,py:percent
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
@@ -34,7 +34,7 @@
 # states is checked by a hidden cell of the notebook, so the book does not build when one stops holding.
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 import numpy as np
 import pandas as pd
 
@@ -73,7 +73,7 @@ print(
 units = {"pv": "PV (m/s)", "sparc": "SPARC"}
 sel[["pv", "sparc"]].rename(columns=units).describe().round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert 2.5 < sd[0] / sd[1] < 3.2, "text: PV's SD nearly three times SPARC's"
 
@@ -122,7 +122,7 @@ print(
     f"k = 6: {sweep.results[6].silhouette:.3f}"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert valid == list(range(2, 17)), (
     "text (summary): every k from 2 to 16 is valid on this cohort"
@@ -182,7 +182,7 @@ ends = pd.DataFrame.from_dict(
 ).rename_axis("k")
 ends.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 smallest, below = ends["smallest cluster (trials)"], ends["trials with s < 0 (%)"]
 assert smallest[2] > 100 and smallest[16] < 10, "text: hundreds of trials to a handful"
@@ -205,7 +205,7 @@ fit = analysis.fit  # K-means, k = 6: the sweep's fit at k = 6
 fig = skf.plot_clusters(fit)
 print(fit.centres.assign(trials=fit.sizes).round(3))
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert fit.labels.tolist() == sweep.results[6].labels.tolist(), "code: the same fit"
 
@@ -221,7 +221,7 @@ assert fit.labels.tolist() == sweep.results[6].labels.tolist(), "code: the same 
 gaps = fit.centres.diff().iloc[1:].rename(index=lambda c: f"{c - 1} -> {c}")
 gaps.rename(columns={"pv": "PV difference (m/s)", "sparc": "SPARC difference"}).round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert gaps["pv"].min() >= 0.15, "text: PV steps >= 0.15"
 assert gaps["sparc"].abs().max() < sd[1], "text: small SPARC steps"
@@ -261,7 +261,7 @@ protos["lowest speed after the peak (m/s)"] = [
 ]
 protos.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert protos["distance to centre"].max() < 0.03, (
     "text: every prototype lies close to its centre"
@@ -290,7 +290,7 @@ print(
     f"SPARC {fit.prototypes['sparc'].iloc[0]:.2f}"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 pf, p0 = fit.prototypes.iloc[-1], fit.prototypes.iloc[0]
 assert (round(pf.pv, 2), round(fast["lowest speed after the peak (m/s)"], 2)) == (
@@ -340,7 +340,7 @@ comparison = pd.DataFrame(
 ).T
 comparison
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert sk.SEED == 9, "text: seed 9"
 
@@ -360,7 +360,7 @@ spread.rename(
     columns={"within": "within the draws' range", "sds": "paper, SDs from mean"}
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert len(draws) == 24, "text: 24 draws"
 assert spread.loc[["n_selected", "n_valid_k"], "within"].all(), "text: within the range"

@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     formats: ipynb,py:percent
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
@@ -35,7 +35,7 @@
 # below is computed from it, so the prototypes and their joint velocities are not those of the paper.
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 import textwrap
 
 import numpy as np
@@ -62,7 +62,7 @@ print(
 )
 protos.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert protos["horizontal"].max() < 0.025, "text: 'drifts by at most about 2 cm'"
 assert round(protos["descent"].min(), 2) == 0.08, "text: 'descents of 8 to 19 cm'"
@@ -158,7 +158,7 @@ lever = np.linalg.norm((robot.fkine(q0).t - joint_pos[1])[[0, 2]])
 print("axis of q2:", joint_axes[1].round(3), " axis of q6:", joint_axes[5].round(3))
 print(f"distance of the tool point from the axis of q2: {lever:.3f} m")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert sk.IK_RESIDUAL_TOL_M == 1e-6, "text: 'checked against 10^-6 m'"
 assert sk.COND_THRESHOLD == 100 and sk.SINGULAR_COND == 1e12, (
@@ -200,7 +200,7 @@ pd.DataFrame(
     R, index=["x base", "y base", "z base"], columns=["x exp", "y exp", "z exp"]
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert np.array_equal(R, [[0, 0, 1], [1, 0, 0], [0, 1, 0]]), (
     "text: 'robot x is experiment z, y is x, z is y: a cyclic permutation'"
@@ -235,7 +235,7 @@ print(textwrap.fill(header, 88))
 print(dh_table)
 print("tool point at the default pose:", robot.fkine(q0).t.round(12) + 0.0, "m")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert [link.a for link in robot.links[1:3]] == [1.0, 1.0], "text: 'two 1 m links'"
 assert np.allclose(joint_pos[3:], robot.fkine(q0).t), (
@@ -271,7 +271,7 @@ print(f"largest IK position residual: {ik_max:.2e} m (accepted up to 1e-06 m)")
 print(f"largest |J qd - v| over all prototypes: {err:.1e}")
 print("flags:", n_flags)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert ik_max < 1e-7, "text: 'the IK residual stays below 10^-7 m'"
 assert err < 1e-12, "text: 'J qd reproduces v to rounding error'"
@@ -328,7 +328,7 @@ print(
 print(f"largest of |qd1|, |qd4|, |qd5|: {sideways:.3f} rad/s")
 peaks.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 top2 = peaks[joints].apply(lambda row: set(row.nlargest(2).index), axis=1)
 assert all(t == {"q2", "q6"} for t in top2), (
@@ -416,7 +416,7 @@ print(
 )
 verdicts.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert qd_book == np.pi and np.all(simple6.qd_limits == np.pi), (
     "text: 'the book gives Simple6 pi rad/s (180 deg/s) on every joint'"
@@ -506,7 +506,7 @@ puma_ok = sk.within_joint_limits(arms["puma560"], q0)
 print("the paper's Simple6 pose within the Puma 560's joint limits:", puma_ok)
 arm_setup
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert arm_setup["q0 within joint limits"].all(), (
     "text: 'a start pose inside its joint limits'"
@@ -561,7 +561,7 @@ print(f"largest IK residual on any arm: {ik_all:.1e} m;")
 print(f"largest |J qd - v| on the Panda (pseudo-inverse): {err:.1e}")
 arm_table.drop(columns="IK residual (m)").round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert arm_table["flags"].sum() == 0 and ik_all < sk.IK_RESIDUAL_TOL_M, (
     "text: 'a start pose that reaches the whole descent'; summary: 'IK to 10^-6 m'"
@@ -599,7 +599,7 @@ print("arms from the lowest to the highest peak joint velocity:", ", ".join(orde
 print(f"largest cond J on any arm: {per_arm['max_cond_J'].max():.2f}")
 per_arm.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert order.tolist() == ["Simple6", "Puma 560", "UR5", "Panda"], (
     "text: 'Simple6 needs the slowest joints, then the Puma 560, the UR5 and the Panda'"
@@ -673,7 +673,7 @@ reported = pd.json_normalize(run.results["transfer"]["prototypes"]).set_index("c
 fields = ["feasible_velocity", "time_scales.velocity", "feasible", "time_scale"]
 reported[[*fields, "binding_limit"]].round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above and below (hidden on the site; nbmake fails if one breaks)
 same = run.prototypes.prototypes[["participant", "trial"]]
 assert same.equals(protos[["participant", "trial"]]), "text: 'the same prototypes'"
@@ -729,7 +729,7 @@ assert reported.index[~reported["feasible"]].tolist() == [2, 3, 4, 5], (
 # manufacturer's values (the UR5's and the Panda's datasheets), and every function takes others: the
 # verdicts are only as good as the limits passed in. The data are synthetic, and so are these verdicts.
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the summary above (hidden on the site; nbmake fails when one stops holding)
 assert per_arm["feasible_velocity"].tolist() == [6, 5, 6, 3], (
     "summary: 'Simple6 and Puma all six, UR5 five, Panda three'"

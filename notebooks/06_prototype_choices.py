@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     formats: ipynb,py:percent
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
@@ -34,7 +34,7 @@
 # states is checked by a hidden cell of the notebook, so the book does not build when one stops holding.
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 import numpy as np
 import pandas as pd
 from scipy.stats import bootstrap
@@ -76,7 +76,7 @@ comparison_fc = sens.comparison()
 c_fc = comparison_fc.iloc[0]  # 10 Hz against 20 Hz
 comparison_fc.T.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert ref.fit.labels.tolist() == fit.labels.tolist(), (
     "text: the reference is chapter 4's k = 6 fit"
@@ -119,7 +119,7 @@ for run in sens.runs:
     print(f"valid k, {run.label}: {run.sweep.valid_k_ranges()}")
 sil = sens.silhouettes()
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert (at_10 >= at_20 - 1e-9).all(), "text: always upwards where capped"
 assert len(alt.sweep.valid_ks()) >= 13, "text: the sweeps differ not in what they allow"
@@ -160,7 +160,7 @@ ari_cm_m = adjusted_rand_score(in_cm.labels, fit.labels)
 print(f"ARI, PV in cm/s vs PV alone: {ari_cm_pv:.3f}")
 print(f"ARI, PV in cm/s vs PV in m/s: {ari_cm_m:.3f}")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert var[0] / var.sum() > 0.85, "text: in m/s PV already carries most of the variance"
 assert ari_cm_pv == 1.0, "text: in cm/s, the partition of PV alone"
@@ -201,7 +201,7 @@ pd.concat({n: f.prototypes.drop(columns="row") for n, f in both.items()}, axis=1
     3
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert ari_std < 0.5, "text: ARI with the raw partition below 0.5"
 assert not shared_std, "text: they share no prototype"
@@ -230,7 +230,7 @@ scores = {"raw": sweep.scores, "standardised": sweep_std.scores}
 print(pd.DataFrame(scores, index=pd.Index(sweep.ks, name="k")).round(3).T)
 print(f"valid k, standardised: {sweep_std.valid_k_ranges()}")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert own, "text: each partition scores higher with its own ruler"
 
@@ -264,7 +264,7 @@ q = ari_seeds.describe()
 print(ari_seeds.round(3).T)
 print(q.loc[["min", "50%", "max"]].round(3))
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert q.loc["max", "n_init = 1"] < 0.8, (
     "text: a single start gives another partition with every seed"
@@ -309,7 +309,7 @@ print(
 print(f"clusters whose prototype changes with the seed: {moving}")
 seed_table.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert rel.max() / rel.min() - 1 < 0.001, "text: within 0.1 %"
 assert rel.idxmin() != 0, "text: the reference is not the lowest"
@@ -336,7 +336,7 @@ for name, a in hundred.items():
     exact[name] = int(np.sum(a == 1.0))
     print(f"  {name:12s}: {exact[name]} of {a.size}; lowest ARI {a.min():.3f}")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert exact["standardised"] < exact["raw"] and ari_std_100.min() < 0.95, (
     "text: standardised stays seed-dependent"
@@ -380,7 +380,7 @@ spread = pd.DataFrame(
 )
 print(spread.round(3))
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 med = spread["median"]
 assert med["bootstrap, raw"] < med["seeds, n_init = 10, raw"] - 0.05, (
@@ -414,7 +414,7 @@ print(
     f"95 % interval [{ci.low:+.3f}, {ci.high:+.3f}]"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert ci.low < 0 < ci.high, "text: the interval contains 0"
 assert abs(np.median(boot_raw) - np.median(boot_std)) < 0.05, (
@@ -485,7 +485,7 @@ cols = ["participant", "trial", "pv", "sparc"]
 methods = {"K-means": fit, "Ward": ward}
 pd.concat({n: f.prototypes[cols] for n, f in methods.items()}, axis=1).round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert 0.6 < ari_ward < 0.85, "text: Ward agrees in large part"
 assert ward.silhouette < fit.silhouette, "text: Ward scores lower"

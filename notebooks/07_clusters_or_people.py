@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     formats: ipynb,py:percent
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
@@ -33,7 +33,7 @@
 # states is checked by a hidden cell of the notebook, so the book does not build when one stops holding.
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 import numpy as np
 import pandas as pd
 from sklearn.metrics import adjusted_rand_score, roc_auc_score
@@ -96,7 +96,7 @@ print(
 )
 by_k.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert k_spread[RATIO] < 0.5 * k_spread[PV_MAX], "text: the ratio hardly moves"
 assert (by_k["time scale needed"] == 1).all(), "text: feasible at every k"
@@ -146,7 +146,7 @@ adj_table = pd.DataFrame(
 ).T
 adj_table.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert adj_table["ARI with the SPARC partition"].between(0.6, 0.85).all(), (
     "text: the slices stay, borders move"
@@ -199,7 +199,7 @@ print(
 )
 print("between-participant share of the variance:", between.round(2).to_dict())
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert dep.nmi > 10 * dep.baseline_q95, "text: far above chance"
 assert dep.p_value == 1 / (1 + 999), "text: 999 times (the smallest p of 999 shuffles)"
@@ -241,7 +241,7 @@ print(
 print(f"share corrected per cluster: {share.round(2).tolist()}")
 print(f"NMI(cluster, corrected) with standardised features: {nmi_std:.3f}")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert dep_strategy.nmi < 0.5 * dep.nmi, "text: weaker than the people"
 assert dep_strategy.p_value < 0.01, "text: above chance"
@@ -334,7 +334,7 @@ print(
 print(peaks)
 table.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 auc = table["AUC for corrected"]
 assert auc.drop("pv").idxmax() == "ldlj" and auc["ldlj"] > 0.9, "text: LDLJ, AUC 0.94"
@@ -408,7 +408,7 @@ print(
     f"uncorrected trials with two peaks {(stricter.n_peaks[~corrected] > 1).sum()}"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert auc_strict <= auc["n_peaks"] and (stricter.n_peaks[~corrected] > 1).sum() == 0, (
     "text: a stricter one only loses peaks"
@@ -450,7 +450,7 @@ spread = cand.ldlj.std() / cand.sparc.std()
 print(f"SD of LDLJ / SD of SPARC over the selected trials: {spread:.1f}")
 clusterings.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 cl = clusterings
 raw_s, raw_l = cl.loc["(PV, SPARC), raw"], cl.loc["(PV, LDLJ), raw"]

@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     formats: ipynb,py:percent
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
@@ -33,7 +33,7 @@
 # below is computed from it, so the prototypes and their stretches are not those of the paper.
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 import numpy as np
 import pandas as pd
 
@@ -69,7 +69,7 @@ setup = pd.DataFrame(
 print(f"Simple6, every joint limited to {STRICT:g} rad/s; the six prototypes:")
 setup.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 s_at = setup[f"s at {STRICT:g} rad/s"]
 assert (s_at > 1).sum() == 5 and s_at[0] == 1, (
@@ -121,7 +121,7 @@ print(
     f"same joint path: {same_path}"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert worst == fastest == 5 and round(s_w, 2) == 2.36, (
     "text: 'the fastest one (cluster 5, s = 2.36)'"
@@ -165,7 +165,7 @@ contact["after scaling (m/s)"] = contact["contact speed (m/s)"] / contact["time 
 contact["still in the window"] = contact["after scaling (m/s)"].between(lo, hi)
 contact.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert (lo, hi) == (0.3, 0.7), "text: 'contact speeds from 0.3 to 0.7 m/s'"
 slowed = contact[contact["time scale"] > 1]
@@ -241,7 +241,7 @@ print(f"fc = {fc:g} Hz, amp_th = {amp_th:g}; Nyquist frequency {FS / 2:g} Hz;")
 print(f"FFT grid step of cluster 0: {grid_step:.3f} Hz")
 bands.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert fc == 20.0 and FS == 60.0 and amp_th == 0.05, (
     "text: 'fixed maximum cut-off f_c = 20 Hz; Nyquist frequency 30 Hz; threshold 0.05'"
@@ -336,7 +336,7 @@ print(f"cluster 4, 60 Hz fc/s: {r4.min():+.3f} at s = {r4.idxmin():g};")
 print(f"at the other stretches between {r4_rest.min():+.3f} and {r4_rest.max():+.3f}")
 per_proto.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert stretch[-1] >= max(s_strict), (
     "text: 'from 1 to 2.6, past the largest stretch the 0.6 rad/s limit asks for'"
@@ -432,7 +432,7 @@ print(f"largest gap between neighbours {gap:.3f}")
 print(f"largest relative PV change from resampling: {pv_change.abs().max():.1%}")
 measured.round(4)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert (pv_change >= 0).all() and round(pv_change.max(), 3) == 0.004, (
     "text: 'to within 0.4% when resampled at 60 Hz (the resampled peak is lower)'"
@@ -495,7 +495,7 @@ fig = skf.plot_time_scaled_plane(
 )
 moved.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 square_off = moved["sparc_b"] - moved["sparc_a"]
 assert len(moved) == 5 and round(square_off.drop(4).abs().max(), 2) <= 0.02, (
@@ -555,7 +555,7 @@ assert np.ptp(moved["sparc_a"]) > 2 * np.ptp(moved["pv_a"]), (
 # works. [The next chapter](09_dynamics.ipynb) adds the accelerations and torques the prototypes need
 # and the stretch that satisfies every limit at once. The data are synthetic, and so are these numbers.
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the summary above (hidden on the site; nbmake fails when one stops holding)
 assert round(s_w, 2) == 2.36 and same_path and abs(after - STRICT) < 1e-9, (
     "summary: 'stretched by 2.36; same path; the binding joint peaks at the limit'"

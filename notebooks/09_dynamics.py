@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     formats: ipynb,py:percent
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
@@ -34,7 +34,7 @@
 # not those of the paper, which reports none of them.
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 
 import numpy as np
 import pandas as pd
@@ -143,7 +143,7 @@ for c, v in late.items():
     )
 accel.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert gap.max() < 0.02, (
     "text: 'the two agree within 2% of the peak acceleration on every arm'"
@@ -273,7 +273,7 @@ print(
 )
 limits_table
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert limits_table["dynamic parameters"].tolist() == [False, True, True, True], (
     "text: 'Simple6 has no masses, the others have'"
@@ -354,7 +354,7 @@ verdict = scales.groupby(level="robot", sort=False).agg(
 )
 verdict
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert verdict["feasible_velocity_only"].tolist() == [6, 5, 6, 3], (
     "text: 'velocity limits only: six (Simple6), five (UR5), six (Puma), three'"
@@ -425,7 +425,7 @@ torque_demo = pd.DataFrame(
 )
 torque_demo.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert weak_arm.tau_limits[1] == 100.0 and arms["puma560"].tau_limits[1] == 186.4
 tb = torque_demo[torque_demo["binding"] == "torque"]
@@ -503,7 +503,7 @@ shown = limit_table.drop(columns="assumed")
 shown.columns = ["count", "from x", "to x", "from", "to", "saturates x", "unit"]
 shown.round(2)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails when one stops holding)
 assert limit_table["feasible"].groupby(level="robot", sort=False).first().tolist() == (
     verdict["feasible"].tolist()
@@ -600,7 +600,7 @@ summary.columns = [
 ]
 summary.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails when one stops holding)
 assert summary["feasible, velocity limits"].tolist() == [6, 5, 6, 3, 1], (
     "text: 'velocity limits: Simple6, Puma six, UR5 five, Panda three; 0.6 rad/s one'"

@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     formats: ipynb,py:percent
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
@@ -34,7 +34,7 @@
 # paper, which reports none of them.
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 import textwrap
 
 import numpy as np
@@ -138,7 +138,7 @@ print(f"error up to {free['error (mm)'].max():.1f} mm;")
 print(f"largest gap between neighbouring cluster centres in SPARC {centre_gap:.3f}")
 executed.loc["Simple6"].round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 s6x = executed.loc["Simple6"]
 assert (s6x.loc[[2, 3, 4, 5], "SPARC change"] < -0.02).all(), (
@@ -200,7 +200,7 @@ for label, speeds in runs.items():
 changed = pd.DataFrame(what, index=protos.index).loc[[3, 5]]
 changed.T.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails when one stops holding)
 assert np.allclose(changed["executed SPARC"], s6x.loc[[3, 5], "executed SPARC"]), (
     "the table's executed SPARC is the execution's"
@@ -282,7 +282,7 @@ print(f"r(SPARC, ln PV) = {r_pv:+.2f}, r(SPARC, contact speed / PV) = {r_ratio:+
 print(f"with ln PV and ln duration regressed out {partial_r:+.2f};")
 print(f"R² of ln peak a on ln PV, ln duration {r2:.3f}, with SPARC {r2_sparc:.3f}")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert len(cohort) == 680 and round(plain_r, 2) == 0.44, (
     "text: '680 trials; plainly, trials with a higher SPARC accelerate more (r = 0.44)'"
@@ -362,7 +362,7 @@ print(f"samples beyond 2 m: {beyond}; unreachable: {kind['unreachable']};")
 print(f"IK failures: {kind['ik_failed']}; NaN qd: {nan_rows}")
 flags.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 assert shell.r_min == 0 and abs(shell.r_max - 2) < 1e-9, "text: 'Simple6: 0 to 2 m'"
 assert round(puma_reach, 3) == 0.877, "text: 'Puma 560: up to 0.877 m'"
@@ -400,7 +400,7 @@ print(f"Panda reach shell: up to {panda_shell.r_max:.3f} m from the shoulder")
 print(textwrap.fill(panda_flags.iloc[0]["reason"], 88))
 panda_flags.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails when one stops holding)
 kinds_panda = panda_flags["reason"].str.split(":").str[0]
 assert kinds_panda.tolist() == ["ik_failed"] * 2 + ["unreachable"] * 3, (

@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     formats: ipynb,py:percent
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
@@ -37,7 +37,7 @@
 # file, replace its path.
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 import json
 import shutil
 from pathlib import Path
@@ -138,7 +138,7 @@ compare = pd.DataFrame({
 })  # fmt: skip
 compare.round(4)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails if one breaks)
 assert mocap_run.returncode in (0, 3), mocap_run.stderr
 assert mocap_model.fs == 100.0, "the TRC files' rate (duration x 100 Hz: samples)"
@@ -196,7 +196,7 @@ print(
 )
 example.head()
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails if one breaks)
 assert example["participant"].nunique() == 5 and len(check) == 5 * 40, (
     "text: 'five participants with 40 trials each'"
@@ -226,7 +226,7 @@ print(features["status"].value_counts().to_dict(), "| window (m/s):", sk.CONTACT
 #| caption: Synthetic example file. Height y (m) and approach speed (m/s) of every valid trial against time from contact (s), y above speed for each participant; selected trials in colour, excluded ones in grey. The command writes the same figure as trials_by_participant.png.
 fig = skf.plot_trials_by_participant(check, features)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails if one breaks)
 valid = features[features["status"] != "invalid"]
 assert len(valid) == len(features), "text: every trial of the example is drawn (valid)"
@@ -286,7 +286,7 @@ print(f"{len(adl)} recordings at {adl.fs:.4g} Hz (from the time stamps); status:
       adl_features["status"].value_counts().to_dict())  # fmt: skip
 pd.DataFrame(adl_rows).round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above and below (hidden on the site; nbmake fails if one breaks)
 adl_table = pd.DataFrame(adl_rows)
 assert len(adl) == 4 and round(adl.fs) == 100, "text: 'four ... at 100 Hz'"
@@ -350,7 +350,7 @@ repair_counts = pd.Series(
 print(f"sampled at {kinesis.fs:.3g} Hz (from the time stamps)")
 repair_counts
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above and below (hidden on the site; nbmake fails if one breaks)
 rc = repair_counts
 assert rc["trials"] == 45 and 84 < kinesis.fs < 86, (

@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     formats: ipynb,py:percent
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
@@ -32,7 +32,7 @@
 # (`skilllib.cohort`), and broken copies of it. With your own file, replace its path.
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 import json
 import shutil
 import subprocess
@@ -75,7 +75,7 @@ data_file = sk.write_recordings(example, work / "lab_recordings.csv")
 check = sk.load_recordings(data_file)
 print(f"{data_file}: {len(check)} trials, sampled at {check.fs:.4g} Hz")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails if one breaks)
 assert example["participant"].nunique() == 5 and len(check) == 5 * 40, (
     "text: 'five participants with 40 trials each'"
@@ -120,7 +120,7 @@ assert check.fs > sk.CohortModel().fs == 60, (
 run = skilllib_run("--data", str(data_file), "--out", str(work / "results"))
 results = json.loads((work / "results" / "results.json").read_text())
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above and below (hidden on the site; nbmake fails if one breaks)
 assert results["k"] == 6, "text: '--k K (clusters, default 6 as in the paper)'"
 assert list(sk.ROBOT_NAMES) == ["simple6", "ur5", "puma560", "panda"], (
@@ -248,7 +248,7 @@ transfer = pd.DataFrame(results["transfer"]["prototypes"])
 columns = ["feasible_velocity", "feasible", "time_scale", "binding_limit", "max_cond_j"]
 clusters.join(transfer[columns]).round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above and below (hidden on the site; nbmake fails if one breaks)
 assert (np.diff(clusters["centre.pv"]) > 0).all(), (
     "text: 'The clusters, ordered by the peak speed of their centre'"
@@ -294,7 +294,7 @@ assert proto_capped[small] and sum(proto_capped) == 1, (
 # %%
 print(wrapped(", ".join(sorted(results["figures"]))))
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above and below (hidden on the site; nbmake fails if one breaks)
 FIGURES = set(
     "trials_by_participant participant_features features sparc_vs_length "
@@ -347,7 +347,7 @@ display(Image(filename=str(work / "results" / "clusters_pv_sparc.png"), width=56
 #| caption: Synthetic example file. Joint velocities (rad/s) of Simple6 reproducing each of its prototypes against time from start (s), one panel per cluster, with the joint velocity limits dashed (joint_velocities.png).
 display(Image(filename=str(work / "results" / "joint_velocities.png"), width=680))
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails if one breaks)
 # rad/s, the curves of the figure
 peaks_s6 = np.array([p["peak_abs_qd"] for p in transfer_s6])
@@ -408,7 +408,7 @@ table["PV as recorded (m/s)"] = [c["prototype"]["pv"] for c in ur5["clusters"]]
 table["PV executable (m/s)"] = table["PV as recorded (m/s)"] / table["time_scale"]
 table.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails if one breaks)
 assert run.returncode == 0, "text: the UR5 run is done (exit status 0)"
 assert not table["feasible_velocity"].any(), (
@@ -470,7 +470,7 @@ print(
     f"trial {proto.trial}:\npeak |qd| q1..q6 {peak} rad/s"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above and below (hidden on the site; nbmake fails if one breaks)
 last = ur5["clusters"][-1]["prototype"]
 assert clusters["prototype.pv"].idxmax() == len(clusters) - 1, (
@@ -511,7 +511,7 @@ lines[5] = ",".join(cells)
 (work / "typo.csv").write_text("\n".join(lines) + "\n")
 run_typo = skilllib_run("--data", str(work / "typo.csv"), "--out", str(work / "typo"))
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails if one breaks)
 for r, name in ((run_mm, "in_mm.csv"), (run_typo, "typo.csv")):
     assert r.returncode == 2, "text: 'and exit status 2'"
@@ -573,7 +573,7 @@ broken_results = json.loads((work / "broken" / "results.json").read_text())
 bad = pd.DataFrame(broken_results["trials"])
 bad[bad["status"] == "invalid"][["participant", "trial", "status", "reason"]]
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails if one breaks)
 assert run.returncode == 0, "text: 'the run ends with exit status 0'"
 invalid = bad[bad["status"] == "invalid"]
@@ -645,7 +645,7 @@ print(
 )
 print("transferred as they are:", few_results["transfer"]["selected_trials"])
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails if one breaks)
 assert few_results["n_selected"] == 2, "text: 'only two of its selected ones'"
 assert run.returncode == 3, "text: 'ends with exit status 3'"

@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     formats: ipynb,py:percent
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
@@ -35,7 +35,7 @@
 # same movements kept without noise to compare with.
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 import json
 import shutil
 import textwrap
@@ -122,7 +122,7 @@ stamp_table = pd.DataFrame(
 ).T.astype({"used as recorded": int, "resampled": int, "status changed": int})
 stamp_table.round(4)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails if one breaks)
 st_ = stamp_table
 assert st_.loc["written to 1 ms", "resampled"] == 0, (
@@ -170,7 +170,7 @@ print(
     f"onset threshold {sk.ONSET_SPEED * 1e3:.0f} mm/s"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails if one breaks)
 assert round(noise_sd * 1e3, 2) == 0.03, "text: 'the device's resolution' (0.03 mm)"
 assert sk.ONSET_SPEED == 0.05, "text: 'the 0.05 m/s onset threshold'"
@@ -203,7 +203,7 @@ for fs in (60, 120, 240, 500, 1000):
 by_rate = pd.DataFrame(rates).set_index("rate (Hz)")
 by_rate.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails if one breaks)
 win = by_rate["window (samples)"]
 assert win.loc[60] == 3 and (np.diff(win) > 0).all(), (
@@ -297,7 +297,7 @@ print(
     f"(limit {limit * 1e3:.0f} mm/s)"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails if one breaks)
 assert vr_filter["speed_noise_limit_m_s"] == 0.005, (
     "text: 'more than 5 mm/s of speed noise'"
@@ -331,7 +331,7 @@ print(
     f"noise line at 0 Hz: {ra.noise_m * 1e3:.3f} mm; cut-off {ra.cutoff_hz:.2f} Hz"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above and below (hidden on the site; nbmake fails if one breaks)
 assert ra.cutoffs[0] == 2.0 and ra.cutoffs[-1] < vr_rec.fs / 2, (
     "text: 'from 2 Hz to ... Nyquist'"
@@ -406,7 +406,7 @@ print(
 )
 noise_table.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails if one breaks)
 nt = noise_table
 auto_row, none_row = nt.loc[AUTO], nt.loc["none"]

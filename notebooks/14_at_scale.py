@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     formats: ipynb,py:percent
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
@@ -33,7 +33,7 @@
 # (`benchmarks/bench_scale.py` measures them again).
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 import json
 import tempfile
 from pathlib import Path
@@ -96,7 +96,7 @@ print(f"{len(one_by_one)} segmented trials, one by one and vectorised:")
 for column, equal in same.items():
     print(f"  {column:14s} every bit the same: {equal}")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 assert len(one_by_one) == len(vectorised) and all(same.values()), (
     "text: 'the same bits'"
 )
@@ -147,7 +147,7 @@ print(
 )
 print(f"  exact:    {exact:.4f} (difference {fit.silhouette - exact:+.4f})")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 assert (sk.SILHOUETTE_EXACT_MAX, est.repeats, est.sample_size) == (5000, 10, 1000), (
     "text: 'up to 5,000 points', '10 random subsamples of 1,000 trials'"
 )
@@ -196,7 +196,7 @@ identical = on_cluster.equals(table)
 print(f"{n_parts} partitions on 2 workers: {len(on_cluster)} trials")
 print(f"the feature table equals the in-memory one: {identical}")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 assert identical, "text: the cluster's feature table is the in-memory one"
 
 # %% [markdown]
@@ -279,7 +279,7 @@ print(
     f"{dask_runs['peak_worker_mb'].max():.0f} MB",
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 assert at_150k["wall_s"] < 60 and at_150k["peak_main_mb"] < 1500, (
     "issue 15: 150,000 trials under 60 s and 1.5 GB"
 )

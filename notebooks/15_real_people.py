@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     formats: ipynb,py:percent
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
@@ -33,7 +33,7 @@
 # `data/real/README.md`), not the synthetic cohort. The numbers in this chapter are theirs.
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 import gzip
 import json
 import shutil
@@ -102,7 +102,7 @@ print(
 with gzip.open(files[0], "rt", encoding="utf-8-sig") as f:
     print("".join(f.readline() for _ in range(7)))
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails if one breaks)
 assert len(files) == 160 and ids.participant.nunique() == 16, (
     "text: '160 ... 16 people'"
@@ -140,7 +140,7 @@ print(
 )
 repaired
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above and below (hidden on the site; nbmake fails if one breaks)
 assert len(adl) == 160 and round(adl.fs) == 100, "text: '160 recordings at 100 Hz'"
 assert 2.4 < length_s.min() and length_s.max() < 5.0, "text: 'from 2.5 to 4.9 s'"
@@ -223,7 +223,7 @@ first_fast = pd.DataFrame(
 print(f"{len(trials)} trials: {len(valid)} valid, {len(invalid)} invalid")
 first_fast
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails if one breaks)
 assert adl_run.returncode in (0, 3), adl_run.stderr
 assert len(trials) == 160, "every file is a trial"
@@ -264,7 +264,7 @@ others = path.drop(path.idxmin()).median()
 print(f"shortest path {path.idxmin()} {path.min():.2f} m; the others {others:.2f} m")
 by_person.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails if one breaks)
 pv_lo, pv_med, pv_hi = summary.pv
 sp_lo, sp_med, sp_hi = summary.sparc
@@ -309,7 +309,7 @@ print(
 )
 clusters.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails if one breaks)
 assert adl_res["k"] == 6, "text: 'k = 6'"
 assert 0.3 < silhouette[6] < 0.5, "text: 'an average silhouette near the paper's'"
@@ -341,7 +341,7 @@ print(
 )
 composition
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails if one breaks)
 run_protos = {(c["prototype"]["participant"], c["prototype"]["trial"])
               for c in adl_res["clusters"]}  # fmt: skip
@@ -375,7 +375,7 @@ ldlj_protos = {(c["prototype"]["participant"], c["prototype"]["trial"])
 kept = len(ldlj_protos & run_protos)
 print(f"prototypes shared with the (PV, SPARC) run: {kept} of {len(run_protos)}")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails if one breaks)
 assert ldlj_run.returncode in (0, 3), ldlj_run.stderr
 assert ldlj_res["task"]["cluster"]["features"] == ["pv", "sparc", "ldlj"]
@@ -411,7 +411,7 @@ for robot in ["simple6", "ur5", "puma560", "panda"]:
 verdicts = pd.DataFrame(verdicts).set_index("arm")
 verdicts.round(2)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails if one breaks)
 s6 = verdicts.loc["Simple6"]
 assert s6["velocity limits hold"] == 6, (
@@ -453,7 +453,7 @@ compare = pd.DataFrame({
 compare["synthetic cohort (selected)"] = cohort_sparc.describe()[["50%", "min", "max"]]
 compare.round(3)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails if one breaks)
 assert np.allclose(whole, valid.sparc, rtol=0, atol=1e-12), "whole: the run's SPARC"
 med = compare.loc["50%"]
@@ -498,7 +498,7 @@ print(f"{len(kin)} trials, {len(kin_valid)} valid; medians:",
       kin_valid[["pv", "sparc", "duration"]].median().round(3).to_dict())  # fmt: skip
 kin_reasons.value_counts()
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails if one breaks)
 assert kin_run.returncode == 0, kin_run.stderr
 assert len(kin) == 45 and len(kin_valid) >= 25, "text: 'most of the 45 reaches'"
@@ -535,7 +535,7 @@ box_run, box_res = skilllib_run(
 box = pd.DataFrame(box_res["trials"])
 box[["participant", "trial", "status", "pv", "contact_speed", "duration", "sparc"]]
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails if one breaks)
 assert box_run.returncode == 3, box_run.stderr
 assert len(box) == 1 and box.status[0] != "invalid", "text: 'one reach, segmented'"
@@ -554,7 +554,7 @@ print(
     f"{box_transfer['time_scale']:.2f} ({box_transfer['binding_limit']} binds)",
 )  # fmt: skip
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails if one breaks)
 assert box_run.returncode == 3 and "clusters" not in box_res, "text: 'no clusters'"
 assert box_transfer["feasible_velocity"], "text: 'could follow its joint velocities'"
@@ -591,7 +591,7 @@ print(f"{len(pushes)} movements, {len(pushes_valid)} valid; duration (s):",
       push_durations.round(2).to_dict())  # fmt: skip
 pushes.loc[pushes.status == "invalid", ["trial", "reason"]]
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims below (hidden on the site; nbmake fails if one breaks)
 assert push_run.returncode == 0, push_run.stderr
 assert len(pushes) == 19 and len(pushes_valid) == 17, "text: '19 movements, 17 valid'"

@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     formats: ipynb,py:percent
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
@@ -30,7 +30,7 @@
 # library; this chapter reads it.
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 import pandas as pd
 
 import skilllib as sk
@@ -63,7 +63,7 @@ print(
     f"these draws: {len(meets)} of {n_draws} (seed {meets[0]})"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert len(survey) == 10 and survey["all"].sum() == 1, "text: 'of the ten seeds, only'"
 assert survey["all"].idxmax() == sk.SEED == 9, "text: 'only seed 9 met them all'"
@@ -144,7 +144,7 @@ print(
     f"fewest valid: {int(draws['n_valid_k'].min())}"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert paper.at["n_selected", "within"], "text: '650 lies within the draws'"
 assert paper.at["n_valid_k", "within"], "text: '15 valid k lies within the draws'"
@@ -196,7 +196,7 @@ print(
     f"the second slowest centre has the lowest SPARC in {lowest_2} of {n_draws}"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert (draws["r2_contact_ratio"] > 10 * draws["r2_corrections"]).all(), (
     "text: 'in every draw the contact ratio explains ten times more'"
@@ -261,7 +261,7 @@ print(
 )
 verdicts.rename(index=sk.DRAW_QUANTITIES)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 v = verdicts
 assert (
@@ -322,7 +322,7 @@ print(
     f"silhouette at k = 6 {other['silhouette_k6']:.3f}"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 row = draws.loc[21]
 assert all(abs(float(other[c]) - float(row[c])) < 1e-9 for c in sk.DRAW_QUANTITIES), (

@@ -1,7 +1,7 @@
 # ---
 # jupyter:
 #   jupytext:
-#     cell_metadata_filter: tags,-all
+#     cell_metadata_filter: tags,jupyter,-all
 #     formats: ipynb,py:percent
 #     notebook_metadata_filter: kernelspec,jupytext
 #     text_representation:
@@ -37,7 +37,7 @@
 # padding level 4) and on the paper's K-means with k = 6 on raw (PV, SPARC).
 # ```
 
-# %% tags=["hide-input"]
+# %% tags=["hide-input"] jupyter={"source_hidden": true}
 import time
 
 import numpy as np
@@ -70,7 +70,7 @@ print("selected trials at phase 0, 1/4, 1/2, 3/4:", ", ".join(map(str, n_sel.val
 print(f"selected segments at phase 0: {n_seg.min()} to {n_seg.max()} samples")
 print(f"the model's position noise: {1e3 * sk.CohortModel().noise_sd:.2f} mm per axis")
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert len(set(n_sel.values())) > 1, "text: the selection already moves with the phase"
 assert (n_seg.min(), n_seg.max()) == (10, 28), "text: 10 to 28 samples"
@@ -108,7 +108,7 @@ pd.Series(
     name="value",
 ).to_frame()
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert spread[["sparc_0.25", "sparc_0.5", "sparc_0.75"]].notna().all().all(), (
     "text: every selected trial stays valid at every phase"
@@ -164,7 +164,7 @@ pd.DataFrame(
     index=[f"{c} - {c + 1}" for c in range(5)],
 ).rename_axis("clusters").round(4)
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 pair_sd = np.maximum(centre_sd[:-1], centre_sd[1:])
 assert (gaps < sd.quantile(0.9)).sum() == 3, (
@@ -233,7 +233,7 @@ pd.Series(
     name="value",
 ).to_frame()
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 med_ratio = both.sparc_sd_est.median() / both.sparc_sd_exact.median()
 assert len(both) == len(spread), "text: the same trials"
@@ -290,7 +290,7 @@ for fc, e in by_fc.items():
 estimators = pd.DataFrame.from_dict(rows, orient="index").round(3)
 estimators
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 r20 = estimators.loc["fc 20 Hz", "r with the book's"]
 sd20 = estimators.loc["fc 20 Hz", "SD of the difference"]
@@ -348,7 +348,7 @@ robust = pd.DataFrame(
 )
 robust
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 aris = [a.ari for a in agree.values()]
 kept = [a.prototypes_kept for a in agree.values()]
@@ -397,7 +397,7 @@ print(
     f"{file_vs.prototypes_kept} of 6 prototypes the same trial"
 )
 
-# %% tags=["remove-cell"]
+# %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)
 assert file_vs.prototypes_kept == 5, "text: five of the six prototypes"
 assert file_vs.ari > 0.97, "text: the partition hardly changes"
