@@ -31,10 +31,13 @@ from bs4 import BeautifulSoup
 ROOT = Path(__file__).resolve().parents[1]
 BUILD_SCRIPT = ROOT / "scripts" / "build_site.py"
 FIXTURE = ROOT / "tests" / "fixtures" / "site"
+# SITE_BUILD_ROOT (a folder) builds both sites there instead of _build, and BOOK_PROJECT (a copy of the
+# repository) is built as the book instead of the repository: for work on the theme beside other work.
+_BUILD_ROOT = Path(os.environ["SITE_BUILD_ROOT"]) if os.environ.get("SITE_BUILD_ROOT") else ROOT / "_build"
 SITES = {
     # name: (project folder, build folder; the site is BUILD/html, the executed notebooks BUILD/site-src)
-    "book": (ROOT, ROOT / "_build"),
-    "fixture": (FIXTURE, ROOT / "_build" / "fixture"),
+    "book": (Path(os.environ.get("BOOK_PROJECT") or ROOT), _BUILD_ROOT),
+    "fixture": (FIXTURE, _BUILD_ROOT / "fixture"),
 }
 IMAGE_TYPES = ("image/png", "image/jpeg", "image/gif", "image/svg+xml")
 REMOTE = re.compile(r"^(https?:)?//", re.I)
