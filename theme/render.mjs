@@ -653,6 +653,7 @@ function pageShell(site, entry, article, outline, previewKeys) {
         h('script', { src: '_static/minisearch.js' }),
         h('script', { src: '_static/search-index.js' }),
         h('script', { src: '_static/site.js' }),
+        h('script', { src: '_static/search.js' }),
       ]),
     ]),
   ]);
