@@ -16,6 +16,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "1.%s"
+# ---
 # # SPARC from first principles
 #
 # The paper describes the skill of every demonstration by one number, the spectral arc length SPARC of
@@ -37,7 +41,6 @@
 # %% tags=["hide-input"] jupyter={"source_hidden": true}
 import functools
 
-import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
@@ -74,11 +77,7 @@ profiles = {
     "two, 0.3 s apart": movement([0, 0.3]),
     "two, 0.5 s apart": movement([0, 0.5]),
 }
-fig, ax = plt.subplots(figsize=(5.5, 3.2))
-for label, v in profiles.items():
-    ax.plot(np.arange(v.size) / FS, v, ".-", ms=3, label=label)
-ax.set(xlabel="time t (s)", ylabel="speed v (m/s)", ylim=(0, 0.47))
-ax.legend(frameon=False, loc="upper right")
+fig = skf.plot_speed_profiles(profiles, FS)
 print(
     f"peak speed of one submovement: {one.max():.3f} m/s "
     f"(1.875 D/T = {1.875 * 0.1 / 0.6:.3f})"

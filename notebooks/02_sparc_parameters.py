@@ -16,6 +16,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "2.%s"
+# ---
 # # SPARC's parameters on short segments
 #
 # Chapter 1 built SPARC from its definition and checked it against the authors' code. This chapter
@@ -36,7 +40,6 @@
 # %% tags=["hide-input"] jupyter={"source_hidden": true}
 import functools
 
-import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
@@ -446,10 +449,8 @@ assert noise_share < 0.01, "text: the cohort's noise is far below 1 % of the pea
 # %%
 #| label: fig-fc
 #| caption: "A copy of the submovement with speed noise of 10 % of its peak (generated). With fc = 10 Hz (left) the band ends where the movement's spectrum fades below the threshold; with fc = 20 Hz (right) a noise bump between 10 and 20 Hz reaches the threshold and the band runs on through the noise."
-fig, axes = plt.subplots(1, 2, figsize=(10, 3.2), sharey=True, layout="constrained")
-for ax, fc in zip(axes, (10.0, 20.0)):
-    spectrum = sk.sparc_spectrum(example, FS, fc=fc)
-    skf.plot_sparc_spectra({f"fc = {fc:g} Hz": spectrum}, ax=ax, fmax=30)
+spectra = {f"fc = {fc:g} Hz": sk.sparc_spectrum(example, FS, fc=fc) for fc in (10, 20)}
+fig = skf.plot_spectra_side_by_side(spectra, fmax=30)
 
 # %% [markdown]
 # ### The book's choice

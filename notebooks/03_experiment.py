@@ -15,6 +15,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "3.%s"
+# ---
 # # The experiment and its data
 #
 # @maldonado2020 asked ten people to touch a box with a virtual spoon at a prescribed
@@ -496,8 +500,8 @@ print(
     f"  {(selected & ~in_truth).sum()} selected but outside the window in truth, "
     f"{(~selected & in_truth).sum()} excluded but inside it\n"
     f"selected trials whose peak speed is the segment's last sample: "
-    f"{len(peak_last)} of {len(sel)} ({100 * len(peak_last) / len(sel):.0f} %), "
-    f"true contact ratio median {true_ratio:.3f}"
+    f"{len(peak_last)} of {len(sel)} ({100 * len(peak_last) / len(sel):.0f} %),\n"
+    f"  their true contact ratio median {true_ratio:.3f}"
 )
 
 # %% tags=["remove-cell"] jupyter={"source_hidden": true}
@@ -616,11 +620,9 @@ for method in ["midpoint", "crossing"]:
     )
 window = draws[[f"in_window_{m}" for m in ["sample", "midpoint", "crossing", "true"]]]
 excess = window["in_window_sample"] - window["in_window_true"]
-print(
-    "trials in the window, median over the draws:",
-    window.median().astype(int).to_dict(),
-    f"\nlast sample minus truth: {excess.min()} to {excess.max()} trials",
-)
+print("trials in the window, median over the draws:")
+print(window.median().astype(int).to_string())
+print(f"last sample minus truth: {excess.min()} to {excess.max()} trials")
 
 # %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden; the build fails when one stops holding)

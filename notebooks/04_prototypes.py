@@ -16,6 +16,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "4.%s"
+# ---
 # # Choosing clusters, finding prototypes
 #
 # The paper describes every selected trial by two numbers, its peak speed PV (the task's performance)

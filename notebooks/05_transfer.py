@@ -16,6 +16,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "5.%s"
+# ---
 # # From human prototypes to robot joint velocities
 #
 # The previous chapter found six prototypical task executions, one real trial per cluster of

@@ -16,6 +16,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "6.%s"
+# ---
 # # How far to trust the prototypes
 #
 # Chapter 4 clustered the selected trials' (PV, SPARC) tuples with K-means and $k = 6$, as the paper

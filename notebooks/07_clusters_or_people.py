@@ -16,6 +16,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "7.%s"
+# ---
 # # What the clusters are
 #
 # Chapter 4 cut the selected trials into six clusters with K-means, as the paper did, and chose a

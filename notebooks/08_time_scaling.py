@@ -16,6 +16,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "8.%s"
+# ---
 # # Slowing a prototype down
 #
 # Chapter 5 transferred the six prototypes to Simple6 and found that under a strict joint velocity

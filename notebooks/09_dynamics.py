@@ -16,6 +16,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "9.%s"
+# ---
 # # Beyond velocities: accelerations and torques
 #
 # [Chapter 5](05_transfer.ipynb) transferred the six prototypes to four arms at the level the paper
@@ -138,8 +142,8 @@ print(f"largest jerk on the Panda against its datasheet jerk limits: {panda_jerk
 late = {c: segs[c].speed[segs[c].speed.argmax() :] for c in (3, 4)}  # peak to contact
 for c, v in late.items():
     print(
-        f"cluster {c}: SPARC {protos.at[c, 'sparc']:.2f}; after its peak the speed "
-        f"falls to {v.min():.2f} m/s, contact speed / PV {v[-1] / v[0]:.2f}"
+        f"cluster {c}: SPARC {protos.at[c, 'sparc']:.2f}; lowest speed after the peak "
+        f"{v.min():.2f} m/s, contact speed / PV {v[-1] / v[0]:.2f}"
     )
 accel.round(3)
 

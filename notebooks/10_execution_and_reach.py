@@ -16,6 +16,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "10.%s"
+# ---
 # # Executing the prototypes, and where the arms cannot reach
 #
 # [Chapter 9](09_dynamics.ipynb) computed the joint accelerations and torques the six prototypes ask

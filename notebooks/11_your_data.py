@@ -16,6 +16,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "11.%s"
+# ---
 # # Your recordings
 #
 # The previous chapters ran on the book's synthetic cohort. This one is for the lab engineer who wants
@@ -40,6 +44,7 @@
 # %% tags=["hide-input"] jupyter={"source_hidden": true}
 import json
 import shutil
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -113,7 +118,9 @@ for (p, tr), g in mocap.frame.groupby(["participant", "trial"], sort=False):
 print(
     sorted(str(f.relative_to(work)) for f in (work / "mocap").rglob("*.trc"))[:3], "..."
 )
-print("\n".join((work / "mocap" / "S1" / "touch1.trc").read_text().splitlines()[:7]))
+trc = (work / "mocap" / "S1" / "touch1.trc").read_text().expandtabs(4).splitlines()
+for line in trc[:7]:  # a line longer than the page wrapped, its continuation marked ↪
+    print(textwrap.fill(line, 88, subsequent_indent="  ↪ ") if len(line) > 88 else line)
 
 # %% [markdown]
 # The command (chapter 12) reads the folder with the axis and the surface height given (the height in the book's

@@ -16,6 +16,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "12.%s"
+# ---
 # # Running the pipeline on your recordings
 #
 # Chapter 11 showed how to bring recordings into the book's format, or read them as a lab writes them,
@@ -643,7 +647,9 @@ print(
     f"{few_results['n_selected']} selected; clusters: {'clusters' in few_results}, "
     f"transfer: {'transfer' in few_results}"
 )
-print("transferred as they are:", few_results["transfer"]["selected_trials"])
+print("transferred as they are:")
+for key in few_results["transfer"]["selected_trials"]:
+    print(f"  participant {key['participant']}, trial {key['trial']}")
 
 # %% tags=["remove-cell"] jupyter={"source_hidden": true}
 # checks of the claims above (hidden on the site; nbmake fails if one breaks)

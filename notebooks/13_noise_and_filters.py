@@ -16,6 +16,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "13.%s"
+# ---
 # # Noise, sampling rates and the low-pass filter
 #
 # The paper's Phantom recorded at 60 Hz with a resolution of hundredths of a millimetre. Most labs

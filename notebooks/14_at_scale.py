@@ -16,6 +16,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "14.%s"
+# ---
 # # At scale
 #
 # One lab records 1,500 touches. A lab that runs the protocol for years, a multi-site study or a VR

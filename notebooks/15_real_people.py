@@ -16,6 +16,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "15.%s"
+# ---
 # # The paper's method on real people
 #
 # Every chapter so far ran on the book's synthetic cohort. This one runs the paper's method, peak
@@ -97,7 +101,7 @@ size_mb = sum(f.stat().st_size for f in files) / 1e6
 licence = (ADL / "LICENSE").read_text().strip().splitlines()
 print(
     f"{len(files)} files, {ids.participant.nunique()} participants, hands "
-    f"{sorted(ids.hand.unique())}, {size_mb:.2f} MB; {licence[0]}, {licence[2]}"
+    f"{sorted(ids.hand.unique())}, {size_mb:.2f} MB;\n{licence[0]}, {licence[2]}"
 )
 with gzip.open(files[0], "rt", encoding="utf-8-sig") as f:
     print("".join(f.readline() for _ in range(7)))
@@ -169,7 +173,10 @@ assert len(repaired) == 1 and repaired.repairs.str.contains("stale").all(), (
 
 # %%
 TASK_FILE = REAL / "ue-adl-forward-reach.toml"
-print(TASK_FILE.read_text())
+# a line longer than the page is shown wrapped, its continuation marked ↪
+for line in TASK_FILE.read_text().splitlines():
+    long = len(line) > 88
+    print(textwrap.fill(line, 88, subsequent_indent="    ↪ ") if long else line)
 
 # %% [markdown]
 # One command then runs the paper's method on the 160 reaches:
@@ -258,7 +265,8 @@ by_person = valid.groupby(["participant", "hand"])[cols].median().unstack("hand"
 share = sk.between_participant_share(valid, cols)
 summary = valid[cols].describe().loc[["min", "50%", "max"]]
 print(summary.round(3).to_string())
-print("between-participant share of the variance:", share.round(2).to_dict())
+print("between-participant share of the variance:")
+print(share.round(2).to_string())
 path = by_person.path_length.mean(axis=1)  # m, per participant
 others = path.drop(path.idxmin()).median()
 print(f"shortest path {path.idxmin()} {path.min():.2f} m; the others {others:.2f} m")
@@ -304,7 +312,7 @@ clusters = pd.DataFrame(
      for c in adl_res["clusters"]]
 )  # fmt: skip
 print(
-    f"k = {adl_res['k']}, average silhouette {silhouette[adl_res['k']]:.3f}; "
+    f"k = {adl_res['k']}, average silhouette {silhouette[adl_res['k']]:.3f};\n"
     f"silhouette-valid k: {adl_res['silhouette_valid_k']}"
 )
 clusters.round(3)

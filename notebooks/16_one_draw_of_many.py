@@ -16,6 +16,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "16.%s"
+# ---
 # # One draw of many
 #
 # Every number of the book so far comes from one draw of the generative model: the cohort of one
@@ -114,7 +118,7 @@ FIGURE = [
     "r2_corrections",
     *[c for c in draws.columns if c.startswith("feasible")],
 ]
-skf.plot_draws(draws, columns=FIGURE, paper={"silhouette_k6": 0.337})
+fig = skf.plot_draws(draws, columns=FIGURE, paper={"silhouette_k6": 0.337})
 
 # %% [markdown]
 # ## The paper against the book and the draws
@@ -187,7 +191,7 @@ print(f"share of bands the 20 Hz cap ends: {cap['min']:.2f} to {cap['max']:.2f}"
 print(f"NMI(cluster, participant): {nmi['min']:.2f} to {nmi['max']:.2f}")
 print(
     f"ARI fc 10 vs 20 Hz: median {ari['median']:.2f}, {ari['min']:.2f} to "
-    f"{ari['max']:.2f}; the book's {ari['book']:.2f} "
+    f"{ari['max']:.2f};\n  the book's {ari['book']:.2f} "
     f"ranks {ari['rank']:.0f} of {n_draws}; 0.75 or more in {high_ari} draws"
 )
 print(
@@ -255,8 +259,8 @@ fewer = {
 }
 print(f"UR5, every limit: none of the six in {no_ur5} of {n_draws} draws")
 print(
-    "draws where every limit leaves at least two fewer than the velocity limits: "
-    f"Simple6 {fewer['simple6']}, UR5 {fewer['ur5']}; at least one fewer: "
+    "draws where every limit leaves at least two fewer than the velocity limits:\n"
+    f"  Simple6 {fewer['simple6']}, UR5 {fewer['ur5']}; at least one fewer: "
     f"Panda {fewer['panda']}"
 )
 verdicts.rename(index=sk.DRAW_QUANTITIES)

@@ -16,6 +16,10 @@
 # ---
 
 # %% [markdown]
+# ---
+# numbering:
+#   enumerator: "17.%s"
+# ---
 # # How precisely SPARC is measured at 60 Hz
 #
 # A selected segment holds 10 to 28 samples at 60 Hz, and where the sampling grid happens to fall on the

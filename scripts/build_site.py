@@ -20,7 +20,15 @@ Steps:
 2. Render: `myst build --html` in the staging folder; myst runs theme/render.mjs (theme/template.yml)
    with BOOK_VERSION, BOOK_COMMIT and BOOK_BUILD_DATE for the page footer.
 3. Copy the result to _build/html and check that every toc entry has its page.
+4. Lighten it: the figures' PNGs become lossless WebP (about 40 % of the bytes; cached in
+   BUILD_DIR/cache/webp), and the site's size and each page's weight (HTML + images + scripts + CSS) are
+   printed.
 A failing cell or page stops the build with a non-zero exit and a message naming it.
+
+Links to the repository ("View source", the licence) use BOOK_SOURCE_URL when it is set (the base URL of
+the repository's files, e.g. https://github.com/org/repo/blob/main/), else a path relative to the site
+(../../ from _build/html), so that they work from file:// in a checkout. Last, the PDF of the whole book
+(scripts/build_pdf.py) is written into the site as book.pdf, which every page links (--no-pdf: neither).
 """
 
 from __future__ import annotations
@@ -75,8 +83,12 @@ FATAL_MYST = re.compile(
     r"Could not link citation|Error reading file|No target for internal reference|"
     r"Duplicate identifier"
 )
-# Toc entries written at build time: file -> package whose API reference it is (scripts/api_page.py).
-GENERATED_PAGES = {"api.md": "skilllib"}
+# Toc entries written at build time: file -> package whose API reference it is part of (scripts/api_page.py
+# writes api.md, the index, and api-<sub-package>.md per public sub-package; myst.yml lists the same pages).
+GENERATED_PAGES = {"api.md": "skilllib"} | {
+    f"api-{sub}.md": "skilllib"
+    for sub in "cohort datasets features figures pipeline prototypes recordings robot smoothness task".split()
+}
 
 
 class BuildError(Exception):
@@ -378,17 +390,20 @@ def build_info(project: Path) -> dict[str, str]:
 
 
 def generate_page(project: Path, rel: str, dst: Path, cache_dir: Path) -> None:
-    """Write the generated page `rel` (GENERATED_PAGES) to dst, from the cache when its package's
-    sources and the generator are unchanged."""
+    """Write the generated page `rel` (GENERATED_PAGES) to dst. scripts/api_page.py writes every page of
+    the package's reference at once into the cache, kept while the package's sources and the generator
+    are unchanged; the pages it writes must be those GENERATED_PAGES lists for the package."""
     package = GENERATED_PAGES[rel]
     generator = Path(__file__).resolve().parent / "api_page.py"
     h = hashlib.sha256(f"{sys.version}\0{_file_digest(generator)}\0".encode())
     h.update(inputs_digest(project, (package,)).encode())
-    cached = cache_dir / f"{Path(rel).stem}-{h.hexdigest()[:24]}.md"
-    if not cached.is_file():
+    cached = cache_dir / f"api-{package}-{h.hexdigest()[:24]}"
+    if not cached.is_dir():
         t0 = time.perf_counter()
+        partial = cached.with_name(cached.name + ".partial")
+        shutil.rmtree(partial, ignore_errors=True)
         proc = subprocess.run(
-            [sys.executable, str(generator), "--package", package, "--out", str(cached)],
+            [sys.executable, str(generator), "--package", package, "--out-dir", str(partial)],
             cwd=project,
             capture_output=True,
             text=True,
@@ -396,17 +411,26 @@ def generate_page(project: Path, rel: str, dst: Path, cache_dir: Path) -> None:
             timeout=600,
         )
         if proc.returncode != 0:
-            cached.unlink(missing_ok=True)
+            shutil.rmtree(partial, ignore_errors=True)
             raise BuildError(
                 f"{rel} (the API reference of {package}) could not be generated:\n"
                 + (proc.stderr.strip() or proc.stdout.strip())[-3000:]
             )
-        for old in cache_dir.glob(f"{Path(rel).stem}-*.md"):
+        written = {p.name for p in partial.glob("*.md")}
+        listed = {Path(f).name for f, p in GENERATED_PAGES.items() if p == package}
+        if written != listed:
+            shutil.rmtree(partial, ignore_errors=True)
+            raise BuildError(
+                f"scripts/api_page.py writes the pages {sorted(written)} for {package}, but GENERATED_PAGES "
+                f"(scripts/build_site.py) lists {sorted(listed)}: list the same pages there and in myst.yml"
+            )
+        partial.rename(cached)
+        for old in cache_dir.glob(f"api-{package}-*"):
             if old != cached:
-                old.unlink()
-        log(f"generated {rel} from the docstrings of {package} in {time.perf_counter() - t0:.1f} s")
+                shutil.rmtree(old, ignore_errors=True)
+        log(f"generated the API reference of {package} ({len(written)} pages) in {time.perf_counter() - t0:.1f} s")
     dst.parent.mkdir(parents=True, exist_ok=True)
-    shutil.copyfile(cached, dst)
+    shutil.copyfile(cached / Path(rel).name, dst)
 
 
 def add_downloads(nb, src: Path) -> None:
@@ -431,6 +455,7 @@ def build(
     chapter_numbers: bool,
     executed: Path | None = None,
     use_cache: bool = True,
+    pdf: bool = True,
 ) -> Path:
     t_start = time.perf_counter()
     cfg, files = read_config(project)
@@ -497,8 +522,12 @@ def build(
     t_exec = time.perf_counter()
 
     # 2. Render with myst and the offline theme. CI=1 and no stdin: myst never prompts.
-    env = dict(os.environ, CI="1", PWD=str(staging), **build_info(project))
+    env = dict(os.environ, CI="1", PWD=str(staging), **build_info(project), **source_env(project, out))
     env.pop("BASE_URL", None)
+    if pdf:
+        env["BOOK_PDF"] = PDF_NAME
+    else:
+        env.pop("BOOK_PDF", None)
     proc = subprocess.run(
         [find_myst(), "build", "--html"],
         cwd=staging,
@@ -535,12 +564,146 @@ def build(
     shutil.rmtree(out, ignore_errors=True)
     tmp.rename(out)
     check_site(out, files)
+    t_check = time.perf_counter()
+    images_to_webp(out, build_dir / "cache" / "webp")
+    t_images = time.perf_counter()
+    if pdf:
+        book_pdf(staging, out / PDF_NAME, build_dir / "cache" / "pdf", build_info(project))
     t_end = time.perf_counter()
     log(
         f"timings: stage+execute {t_exec - t_start:.1f} s, myst+render {t_myst - t_exec:.1f} s, "
-        f"copy+check {t_end - t_myst:.1f} s, total {t_end - t_start:.1f} s"
+        f"copy+check {t_check - t_myst:.1f} s, images {t_images - t_check:.1f} s, "
+        f"pdf {t_end - t_images:.1f} s, total {t_end - t_start:.1f} s"
     )
+    report_weight(out)
     return out
+
+
+# ------------------------------------------------------------------------------ source links, weight --
+
+PDF_NAME = "book.pdf"  # written into the site by the PDF step (scripts/build_pdf.py); linked from every page
+
+
+def book_pdf(staging: Path, dst: Path, cache: Path, info: dict[str, str]) -> None:
+    """The PDF of the staged book (scripts/build_pdf.py: mystmd's Typst export, compiled offline) at dst,
+    cached on the staged files, the PDF step's own files and the title page's build information."""
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    import build_pdf
+
+    cache.mkdir(parents=True, exist_ok=True)
+    # the build date is left out of the key: a PDF says when its content was last built
+    h = hashlib.sha256(json.dumps({k: v for k, v in info.items() if "DATE" not in k}, sort_keys=True).encode())
+    sources = [p for p in sorted(staging.rglob("*")) if p.is_file() and "_build" not in p.relative_to(staging).parts]
+    sources += [Path(build_pdf.__file__), *sorted((ROOT / "theme" / "typst").rglob("*"))]
+    for path in sources:
+        if path.is_file():
+            h.update(str(path).encode() + b"\0" + _file_digest(path).encode())
+    cached = cache / f"{h.hexdigest()[:24]}.pdf"
+    if cached.is_file():
+        log(f"PDF unchanged, taken from {cached.parent.name}/")
+    else:
+        try:
+            build_pdf.build_pdf(staging, cached.with_suffix(".tmp.pdf"), build_info=info)
+        except build_pdf.PdfError as err:
+            raise BuildError(f"the book's PDF: {err}") from None
+        cached.with_suffix(".tmp.pdf").rename(cached)
+        for old in cache.glob("*.pdf"):  # one PDF is kept: the latest
+            if old != cached:
+                old.unlink()
+    shutil.copyfile(cached, dst)
+
+
+def source_env(project: Path, out: Path) -> dict[str, str]:
+    """What the theme needs to link the repository's files: the checkout (only files that exist there
+    are linked) and its path relative to the site. BOOK_SOURCE_URL, when set, is passed through as is."""
+    rel = Path(os.path.relpath(project, out)).as_posix()
+    return {"BOOK_SOURCE_ROOT": str(project), "BOOK_SOURCE_RELATIVE": rel.rstrip("/") + "/"}
+
+
+def images_to_webp(out: Path, cache: Path) -> None:
+    """Every PNG of assets/ becomes a lossless WebP (the same pixels in about 40 % of the bytes; every
+    browser of the last five years shows it), and the pages refer to it."""
+    from PIL import Image
+
+    pngs = sorted((out / "assets").glob("*.png"))
+    if not pngs:
+        return
+    cache.mkdir(parents=True, exist_ok=True)
+    renamed, before, after = {}, 0, 0
+    for png in pngs:
+        data = png.read_bytes()
+        cached = cache / f"{hashlib.sha256(data).hexdigest()[:32]}.webp"
+        if not cached.is_file():
+            with Image.open(png) as im:
+                tmp = cached.with_suffix(".tmp")
+                im.save(tmp, "WEBP", lossless=True, quality=100, method=4, exact=True)
+            tmp.replace(cached)
+        webp = png.with_suffix(".webp")
+        if cached.stat().st_size >= len(data):  # never heavier
+            continue
+        shutil.copyfile(cached, webp)
+        png.unlink()
+        renamed[f"assets/{png.name}"] = f"assets/{webp.name}"
+        before, after = before + len(data), after + webp.stat().st_size
+    if not renamed:
+        return
+    pattern = re.compile("|".join(re.escape(k) for k in renamed))
+    for page in out.glob("*.html"):
+        html = page.read_text(encoding="utf-8")
+        new = pattern.sub(lambda m: renamed[m.group(0)], html)
+        if new != html:
+            page.write_text(new, encoding="utf-8")
+    log(f"images: {len(renamed)} PNGs as lossless WebP, {before / 1e6:.1f} MB -> {after / 1e6:.1f} MB")
+
+
+def page_weights(out: Path) -> dict[str, dict[str, int]]:
+    """Bytes each page loads when opened: its HTML, the images, scripts and stylesheets it refers to
+    (files of the site; fonts and what scripts load later not counted)."""
+    from html.parser import HTMLParser
+
+    class Refs(HTMLParser):
+        def __init__(self) -> None:
+            super().__init__()
+            self.refs: dict[str, set[str]] = {"img": set(), "script": set(), "css": set()}
+            self.in_template = 0
+
+        def handle_starttag(self, tag, attrs):
+            a = dict(attrs)
+            if tag == "template":
+                self.in_template += 1
+            elif tag == "img" and a.get("src") and not self.in_template:
+                self.refs["img"].add(a["src"])
+            elif tag == "script" and a.get("src"):
+                self.refs["script"].add(a["src"])
+            elif tag == "link" and a.get("rel") in ("stylesheet", "icon") and a.get("href"):
+                self.refs["css"].add(a["href"])
+
+        def handle_endtag(self, tag):
+            if tag == "template":
+                self.in_template -= 1
+
+    weights = {}
+    for page in sorted(out.glob("*.html")):
+        parser = Refs()
+        parser.feed(page.read_text(encoding="utf-8"))
+        w = {"html": page.stat().st_size}
+        for kind, refs in parser.refs.items():
+            files = [out / r.split("#")[0] for r in refs if not re.match(r"^[a-z]+:", r)]
+            w[kind] = sum(f.stat().st_size for f in files if f.is_file())
+        w["total"] = sum(w.values())
+        weights[page.name] = w
+    return weights
+
+
+def report_weight(out: Path) -> None:
+    total = sum(f.stat().st_size for f in out.rglob("*") if f.is_file())
+    log(f"site size: {total / 1e6:.1f} MB in {sum(1 for f in out.rglob('*') if f.is_file())} files ({out})")
+    log("page weights (kB: total = html + images + scripts + css and icon, loaded when the page opens):")
+    for name, w in sorted(page_weights(out).items(), key=lambda kv: -kv[1]["total"]):
+        log(
+            f"  {name:32s} {w['total'] / 1e3:7.0f} = {w['html'] / 1e3:5.0f} + {w['img'] / 1e3:5.0f} "
+            f"+ {w['script'] / 1e3:4.0f} + {w['css'] / 1e3:4.0f}"
+        )
 
 
 def check_site(out: Path, files: list[str]) -> None:
@@ -577,6 +740,7 @@ def main(argv: list[str] | None = None) -> int:
     )
     ap.add_argument("--timeout", type=int, default=600, help="seconds allowed per cell (default 600)")
     ap.add_argument("--no-chapter-numbers", action="store_true", help="number figures 1, 2, ... on every page")
+    ap.add_argument("--no-pdf", action="store_true", help=f"no PDF of the book ({PDF_NAME}) and no link to it")
     args = ap.parse_args(argv)
     project = args.project.resolve()
     build_dir = (args.build_dir or project / "_build").resolve()
@@ -589,6 +753,7 @@ def main(argv: list[str] | None = None) -> int:
             not args.no_chapter_numbers,
             args.executed.resolve() if args.executed else None,
             use_cache=not args.no_cache,
+            pdf=not args.no_pdf,
         )
     except BuildError as err:
         print(f"build_site: ERROR: {err}", file=sys.stderr, flush=True)

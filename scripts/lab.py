@@ -9,6 +9,18 @@ skilllib` finds the editable install, started in the notebook's own folder (note
 chapters find the data. jupyterlab-myst renders the chapters' MyST: cross-references, numbered
 equations, admonitions. Saving a notebook updates its percent script too (Jupytext, jupytext.toml).
 Nothing is fetched from the network: JupyterLab's update check is off.
+
+The repository's .jupyter/ folder is put first on JUPYTER_CONFIG_PATH, so that JupyterLab reads
+.jupyter/jupyter_server_config.py, which
+- saves a chapter without outputs (`clean_chapter` below, a pre-save hook): running a chapter and
+  saving it (autosave does, every two minutes) leaves the tracked notebook and its percent script as
+  they were; the outputs stay in the open tab;
+- adds the extension in .jupyter/labextensions/skilllib-book (one plain script): citations read as
+  on the site (author, year from references.bib) instead of jupyterlab-myst's "Citation Not Found",
+  and references to figures show their numbers ("Figure 1.3").
+Equations are numbered as on the site (1.1, 1.2, ...) by each chapter's own front matter
+(scripts/notebook_front_matter.py); the check and setup cells open folded (their `jupyter:
+source_hidden` cell metadata).
 """
 
 from __future__ import annotations
@@ -16,10 +28,52 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from pathlib import Path
+from pathlib import Path, PurePosixPath
 
 ROOT = Path(__file__).resolve().parents[1]
 FIRST_CHAPTER = "notebooks/01_sparc.ipynb"
+CONFIG_DIR = ROOT / ".jupyter"  # jupyter_server_config.py, labextensions/
+CHAPTERS_DIR = "notebooks"  # relative to the root JupyterLab serves
+
+
+def is_chapter(path: str, nb: dict) -> bool:
+    """A chapter: a notebook of notebooks/ paired with its percent script by Jupytext."""
+    formats = str(((nb.get("metadata") or {}).get("jupytext") or {}).get("formats", ""))
+    p = PurePosixPath(path.strip("/"))
+    return p.suffix == ".ipynb" and p.parent.as_posix() == CHAPTERS_DIR and "py:percent" in formats
+
+
+def clean_chapter(model: dict, path: str, **kwargs) -> None:
+    """Jupyter pre-save hook: a chapter is saved as it is committed, without what running it adds.
+
+    Its code cells lose their outputs and execution counts; the cell and notebook metadata keep only
+    what the chapter's Jupytext filters keep in the percent script (`jupyter` and `tags`; `kernelspec`
+    and `jupytext`), so the `language_info` a kernel adds is not saved either. Other notebooks are
+    saved as they are. The model is changed in place, before Jupyter (and Jupytext) write it."""
+    if model.get("type") != "notebook" or not isinstance(model.get("content"), dict):
+        return
+    nb = model["content"]
+    if not is_chapter(path, nb):
+        return
+    from jupytext.cell_metadata import _IGNORE_CELL_METADATA
+    from jupytext.header import _DEFAULT_NOTEBOOK_METADATA
+    from jupytext.metadata_filter import filter_metadata
+
+    jt = nb["metadata"]["jupytext"]
+    for cell in nb.get("cells", []):
+        if cell.get("cell_type") == "code":
+            cell["outputs"] = []
+            cell["execution_count"] = None
+        cell["metadata"] = filter_metadata(
+            cell.get("metadata", {}), jt.get("cell_metadata_filter"), _IGNORE_CELL_METADATA
+        )
+    nb["metadata"] = filter_metadata(nb["metadata"], jt.get("notebook_metadata_filter"), _DEFAULT_NOTEBOOK_METADATA)
+
+
+def lab_environment(env: dict[str, str]) -> dict[str, str]:
+    """env with the book's Jupyter configuration (.jupyter/) first on JUPYTER_CONFIG_PATH."""
+    paths = [str(CONFIG_DIR), *[p for p in env.get("JUPYTER_CONFIG_PATH", "").split(os.pathsep) if p]]
+    return {**env, "JUPYTER_CONFIG_PATH": os.pathsep.join(dict.fromkeys(paths))}
 
 
 def lab_command(root: Path, notebook: str, extra: list[str]) -> list[str]:
@@ -50,7 +104,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"lab: {args.root / args.open} does not exist", file=sys.stderr)
         return 2
     cmd = lab_command(args.root.resolve(), args.open, args.extra)
-    os.execv(cmd[0], cmd)
+    os.execve(cmd[0], cmd, lab_environment(dict(os.environ)))
     return 0  # not reached
 
 

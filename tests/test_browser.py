@@ -4,7 +4,7 @@ Checks what only a browser can: KaTeX math is laid out with its local fonts, the
 word and links to its page, nothing is requested from the network, on a phone-sized screen the
 contents collapse behind the menu button; the outline marks the section in view, copy buttons copy,
 dark mode follows the system and the switch, references preview their targets on hover, and a printed
-page keeps every line of code. Last, chapter 1 in JupyterLab (`make lab`): opened, run, rendered.
+page keeps every line of code. Chapter 1 in JupyterLab (`make lab`) is in tests/test_jupyterlab.py.
 Chromium is driven over the DevTools protocol (websocket-client); skipped only when no Chromium is
 installed (CI installs Debian's).
 """
@@ -17,15 +17,13 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 import tempfile
 import time
 import urllib.request
 from pathlib import Path
 
-import nbformat
 import pytest
-from test_site import ROOT, SITE_PARAMS, built_site
+from test_site import SITE_PARAMS, built_site
 
 websocket = pytest.importorskip("websocket", reason="websocket-client is needed to drive Chromium")
 
@@ -382,148 +380,3 @@ def test_print_shows_the_text_only_with_every_line_of_code(browser, site):
     finally:
         browser.send("Emulation.setEmulatedMedia", media="")
         browser.send("Emulation.clearDeviceMetricsOverride")
-
-
-# ---------------------------------------------------------------- chapter 1 in JupyterLab --
-
-LAB_CHAPTER = "notebooks/01_sparc.ipynb"
-
-
-class JupyterLab:
-    """JupyterLab as `make lab` starts it (scripts/lab.py), headless on a free localhost port, serving a
-    copy of chapter 1 (running it must not write outputs into the repository's notebook)."""
-
-    def __init__(self, tmp: Path) -> None:
-        import secrets
-        import socket
-
-        self.tmp = tmp
-        (tmp / "root" / "notebooks").mkdir(parents=True)
-        shutil.copy(ROOT / LAB_CHAPTER, tmp / "root" / LAB_CHAPTER)
-        # every cell in the page (no windowing), so that the whole notebook can be inspected
-        settings = tmp / "settings" / "@jupyterlab" / "notebook-extension"
-        settings.mkdir(parents=True)
-        (settings / "tracker.jupyterlab-settings").write_text(json.dumps({"windowingMode": "none"}))
-        with socket.socket() as s:
-            s.bind(("127.0.0.1", 0))
-            self.port = s.getsockname()[1]
-        self.token = secrets.token_hex(16)
-        cmd = [
-            sys.executable,
-            str(ROOT / "scripts" / "lab.py"),
-            "--root",
-            str(tmp / "root"),
-            "--open",
-            LAB_CHAPTER,
-            "--",
-            "--no-browser",
-            "--ip=127.0.0.1",
-            f"--port={self.port}",
-            "--ServerApp.port_retries=0",
-            f"--IdentityProvider.token={self.token}",
-            "--LabApp.expose_app_in_browser=True",
-            f"--LabApp.user_settings_dir={tmp / 'settings'}",
-            f"--LabApp.workspaces_dir={tmp / 'workspaces'}",
-        ]
-        env = {**os.environ, "JUPYTER_RUNTIME_DIR": str(tmp / "runtime"), "JUPYTER_CONFIG_DIR": str(tmp / "config")}
-        self.log = tmp / "lab.log"
-        self.proc = subprocess.Popen(
-            cmd,
-            env=env,
-            stdout=self.log.open("w"),
-            stderr=subprocess.STDOUT,
-            stdin=subprocess.DEVNULL,
-            start_new_session=True,
-        )
-        deadline = time.monotonic() + 90
-        while True:
-            try:
-                urllib.request.urlopen(f"{self.base}/api/status?token={self.token}", timeout=2)
-                break
-            except OSError:
-                if self.proc.poll() is not None or time.monotonic() > deadline:
-                    self.stop()
-                    raise RuntimeError("JupyterLab did not start:\n" + self.log.read_text()[-2000:]) from None
-                time.sleep(0.2)
-
-    @property
-    def base(self) -> str:
-        return f"http://127.0.0.1:{self.port}"
-
-    def stop(self) -> int | None:
-        if self.proc.poll() is None:
-            self.proc.terminate()  # JupyterLab shuts its kernels down on SIGTERM
-            try:
-                self.proc.wait(timeout=30)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait(timeout=10)
-        return self.proc.returncode
-
-
-NOTEBOOK = "[...jupyterapp.shell.widgets('main')].find(w => w.content && w.content.widgets && w.sessionContext)"
-
-
-@pytest.mark.jupyterlab
-def test_chapter_1_runs_in_jupyterlab_with_myst(browser, tmp_path):
-    """`make lab`'s JupyterLab: chapter 1 opens with the book's kernel, jupyterlab-myst renders its MyST
-    (an equation reference shows its equation's number, an admonition is an admonition), every cell runs
-    without an error and the figures appear. The server is stopped at the end."""
-    lab = JupyterLab(tmp_path)
-    try:
-        browser.send("Emulation.setFocusEmulationEnabled", enabled=True)  # JupyterLab tracks the focused panel
-        browser.send("Emulation.setDeviceMetricsOverride", width=1400, height=1000, deviceScaleFactor=1, mobile=False)
-        browser.send("Page.navigate", url=f"{lab.base}/lab/tree/{LAB_CHAPTER}?token={lab.token}")
-        browser.wait_for(
-            f"window.jupyterapp && {NOTEBOOK} && {NOTEBOOK}.sessionContext.session && "
-            f"{NOTEBOOK}.sessionContext.session.kernel",
-            timeout=120,
-        )
-        kernel = browser.eval(
-            f"(() => {{ const k = {NOTEBOOK}.sessionContext; return [k.session.kernel.name, k.kernelDisplayName]; }})()"
-        )
-        assert kernel == ["skilllib", "Smoothness-based prototypes (skilllib)"], kernel
-        # MyST: a reference to an equation reads as the number its equation shows; a note is an admonition
-        chapter = nbformat.read(ROOT / LAB_CHAPTER, as_version=4)
-        n_refs = sum(c.source.count("](#eq-sparc)") for c in chapter.cells if c.cell_type == "markdown")
-        refs_js = """[...document.querySelectorAll('.jp-MarkdownCell a[href="#eq-sparc"]')]
-            .filter(a => !a.closest('#eq-sparc')).map(a => a.textContent.trim())"""
-        browser.wait_for(f"document.getElementById('eq-sparc') && {refs_js}.length >= {n_refs}", timeout=60)
-        number = browser.eval("document.getElementById('eq-sparc').textContent.trim().match(/\\((\\d+)\\)$/)[0]")
-        refs = browser.eval(refs_js)
-        assert refs and all(r == number for r in refs), (
-            f"references to eq-sparc read {refs}, the equation shows {number}"
-        )
-        assert browser.eval(
-            "[...document.querySelectorAll('.jp-MarkdownCell aside')].some(a => /Note/.test(a.textContent))"
-        )
-        # run every cell, as a reader stepping through would
-        browser.eval(f"jupyterapp.shell.activateById({NOTEBOOK}.id)")
-        browser.eval("jupyterapp.commands.execute('notebook:run-all-cells')")
-        browser.wait_for(
-            f"""(() => {{ const p = {NOTEBOOK};
-            const code = p.content.widgets.filter(c => c.model.type === 'code');
-            return code.every(c => c.model.executionCount !== null) && p.sessionContext.session.kernel.status === 'idle'; }})()""",
-            timeout=400,
-        )
-        errors = browser.eval(f"""{NOTEBOOK}.content.widgets.filter(c => c.model.type === 'code')
-            .flatMap((c, i) => c.model.outputs.toJSON().filter(o => o.output_type === 'error').map(o => [i + 1, o.ename, o.evalue]))""")
-        assert not errors, f"cells raised errors (code cell, exception, message): {errors}"
-        shown = browser.eval(
-            "document.querySelectorAll('.jp-ErrorOutput, [data-mime-type=\"application/vnd.jupyter.error\"]').length"
-        )
-        assert shown == 0
-        browser.wait_for("[...document.querySelectorAll('.jp-OutputArea-output img')].some(i => i.naturalWidth > 100)")
-        n_figures = browser.eval(
-            "[...document.querySelectorAll('.jp-OutputArea-output img')].filter(i => i.naturalWidth > 100).length"
-        )
-        expected = sum(1 for c in chapter.cells if c.cell_type == "code" and "#| label: fig-" in c.source)
-        assert n_figures >= expected > 0, f"{n_figures} figures shown, {expected} figure cells"
-    finally:
-        browser.send("Emulation.clearDeviceMetricsOverride")
-        browser.send("Emulation.setFocusEmulationEnabled", enabled=False)
-        browser.send("Page.navigate", url="about:blank")
-        code = lab.stop()
-    assert code is not None, "the JupyterLab server is still running"
-    with pytest.raises(OSError):
-        urllib.request.urlopen(f"{lab.base}/api/status", timeout=2)

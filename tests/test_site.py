@@ -263,7 +263,24 @@ def test_notebook_pages_show_every_figure(site):
                 shown.append(target.read_bytes())
         for mime, blob in _image_outputs(site.executed(file)):
             ok = any(blob == s or (mime == "image/svg+xml" and blob.strip() == s.strip()) for s in shown)
+            ok = ok or (mime == "image/png" and _same_pixels(blob, shown))  # the site's lossless WebP
             assert ok, f"{page.url}: an {mime} output of {file} is not shown"
+
+
+def _same_pixels(png: bytes, shown: list[bytes]) -> bool:
+    import io
+
+    from PIL import Image, ImageChops, UnidentifiedImageError
+
+    im = Image.open(io.BytesIO(png)).convert("RGBA")
+    for s in shown:
+        try:
+            other = Image.open(io.BytesIO(s)).convert("RGBA")
+        except UnidentifiedImageError:
+            continue
+        if other.size == im.size and ImageChops.difference(other, im).getbbox() is None:
+            return True
+    return False
 
 
 def test_labelled_figure_cells_are_numbered_figures(site):
@@ -339,13 +356,13 @@ def _search_data(site) -> dict:
 
 def test_search_index_covers_every_page(site):
     data = _search_data(site)
-    stored = data["index"]["storedFields"].values()
-    indexed_pages = {s["url"].split("#")[0] for s in stored}
+    indexed_pages = {data["pages"][s[0]]["url"] for s in data["sections"]}
     for page in site.pages:
         assert page.url in indexed_pages, f"{page.url} is not in the search index"
-        assert '<script src="_static/search-index.js">' in page.html
-        assert 'id="search-input"' in page.html
-    assert data["index"]["documentCount"] >= len(site.pages)
+        assert 'src="_static/search-index.js"' not in page.html, "the index is loaded by search.js on first use"
+        assert '<script src="_static/search.js">' in page.html and 'id="search-input"' in page.html
+    assert len(data["sections"]) >= len(site.pages)
+    assert {p["kind"] for p in data["pages"]} <= {"chapter", "docs", "api"}
 
 
 def test_notebook_download_links_resolve(site):
@@ -395,14 +412,14 @@ def test_fixture_renders_every_element():
     assert 'href="#fn-speed"' in index.html and 'id="fn-speed"' in index.html
     assert 'href="#cite-balasubramanian2015"' in index.html and "On the analysis of movement smoothness" in index.html
     # outputs: stdout, stderr, execute_result, pandas HTML, errors without ANSI codes, markdown
-    assert '<pre class="output stream stdout">hello from stdout' in demo.html
-    assert '<pre class="output stream stderr">a warning on stderr' in demo.html
+    assert '<pre class="output stream stdout prose">hello from stdout' in demo.html  # prose prints wrap
+    assert '<pre class="output stream stderr prose">a warning on stderr' in demo.html
     assert '<pre class="output text">42</pre>' in demo.html
     assert 'class="dataframe"' in demo.html
     outputs = "".join(re.findall(r'<pre class="output[^"]*">(.*?)</pre>', second.html, re.S))
     assert "ZeroDivisionError: division by zero" in outputs and "red text after ANSI" in outputs
     assert "\x1b" not in second.html and "[31m" not in outputs and "[0m" not in outputs
-    assert '<pre class="output stream stderr">progress 3/3' in second.html
+    assert re.search(r'<pre class="output stream stderr( prose)?">progress 3/3', second.html)
     assert "<strong>markdown</strong>" in second.html
     # outputs over mystmd's 25,000 characters are shown whole, in a scrolling box when tagged so
     assert "line 2999\n" in second.html and 'class="outputs scroll"' in second.html
@@ -777,79 +794,206 @@ def _public_api(package: str = "skilllib") -> dict[str, object]:
     return found
 
 
+def _api_pages(site) -> dict[str, Page]:
+    """The API reference's pages: api.md (the index) and api-<sub-package>.md."""
+    return {p.file: p for p in site.pages if re.fullmatch(r"api(-[\w-]+)?\.md", p.file)}
+
+
+def _html_id(label: str) -> str:
+    return label.replace(".", "-").replace("_", "-").lower()
+
+
+def _entry_blocks(heading) -> list:
+    """The elements of an API entry: from its heading to the next h2/h3."""
+    out = []
+    for sib in heading.find_next_siblings():
+        if sib.name in ("h2", "h3"):
+            break
+        out.append(sib)
+    return out
+
+
+def _numpydoc_names(doc: str, section: str) -> list[str]:
+    """The names a numpydoc section lists (``name : type`` or ``name1, name2 : type`` at the left margin),
+    read independently of scripts/api_page.py."""
+    m = re.search(rf"^{section}\n-+\n(.*?)(?=^[A-Z][\w ]*\n-{{3,}}\n|\Z)", doc, re.S | re.M)
+    return [n.replace("\\", "") for n in re.findall(r"^(\S[^:\n]*?) : ", m.group(1), re.M)] if m else []
+
+
+# A unit as docstrings state it, in parentheses after the quantity: "(m/s)", "(Hz)", "(dimensionless)".
+STATED_UNIT = re.compile(r"\((m|s|m/s|m/s\^2|rad|rad/s|deg|Hz|dimensionless)\)")
+# About 60: a sub-package page's outline lists its functions and classes (features: 61) or, on the figures
+# page, its modules and their functions; never methods, properties or docstring sections (75 on features).
+API_OUTLINE_MAX = 70
+
+
 @pytest.mark.book_site
-def test_api_page_lists_every_public_function_with_its_units():
+def test_api_page_per_sub_package_lists_every_public_function_once_with_a_parameter_table():
+    import inspect
+
     site = built_site("book")
-    page = site.page("api.md")
-    ids = {tag["id"]: tag for tag in page.soup.select("main [id]")}
+    pages = _api_pages(site)
     api = _public_api()
     assert len(api) > 50
-    for dotted in api:
-        html_id = dotted.replace(".", "-").replace("_", "-").lower()
-        heading = ids.get(html_id) or ids.get(f"{html_id}-class")
-        assert heading is not None and heading.name in ("h3",), f"API page: no entry for {dotted}"
-        units = heading.find_next("strong", string="Units:")
-        assert units is not None and units.find_previous(["h3"]) is heading, f"{dotted}: no units line"
+    assert set(pages) == {"api.md"} | {f"api-{d.split('.')[1]}.md" for d in api}, sorted(pages)
+    where: dict[str, list[tuple[str, object]]] = {}
+    for file, page in pages.items():
+        for tag in page.article.select("[id]"):
+            where.setdefault(tag["id"], []).append((file, tag))
+    stated = 0
+    for dotted, obj in api.items():
+        # a class named like a function of its module has the label <name>-class (MyST ignores case)
+        found = (inspect.isclass(obj) and where.get(f"{_html_id(dotted)}-class")) or where.get(_html_id(dotted)) or []
+        assert len(found) == 1, f"{dotted}: on {[f for f, _ in found]} (one sub-package page expected)"
+        file, heading = found[0]
+        assert file == f"api-{dotted.split('.')[1]}.md", f"{dotted} is on {file}"
+        assert heading.name in ("h2", "h3"), f"{dotted}: <{heading.name}>"
+        # the numpydoc Parameters: a table with one row per parameter, the unit in its column
+        names = _numpydoc_names(inspect.getdoc(obj) or "", "Attributes" if inspect.isclass(obj) else "Parameters")
+        if not names:
+            continue
+        header = "Attribute" if inspect.isclass(obj) else "Parameter"
+        tables = [t for b in _entry_blocks(heading) for t in b.select("table")]
+        table = next((t for t in tables if t.select_one("th").get_text() == header), None)
+        assert table is not None, f"{dotted}: no {header} table"
+        cols = [th.get_text() for th in table.select("thead th")]
+        assert cols == [header, "Type", "Unit", "Description"], f"{dotted}: columns {cols}"
+        rows = [[td.get_text(" ", strip=True) for td in tr.select("td")] for tr in table.select("tbody tr")]
+        assert [r[0] for r in rows] == names, f"{dotted}: rows {[r[0] for r in rows]}, docstring {names}"
+        for name, _type, unit, desc in rows:
+            for u in STATED_UNIT.findall(desc):
+                stated += 1
+                shown = unit.replace("²", "^2").split(", ")
+                assert u in shown, f"{dotted}, {name}: the description states ({u}), the unit column {unit!r}"
+    assert stated > 100, f"only {stated} table rows state a unit"
 
-    # the units shown are those the docstring states, for functions whose units are known
-    def units_of(dotted):
-        heading = ids[dotted.replace(".", "-").replace("_", "-").lower()]
-        return [c.get_text() for c in heading.find_next("strong", string="Units:").parent.find_all("code")]
+    def row(dotted, name):
+        page_file, heading = where[_html_id(dotted)][0]
+        for b in _entry_blocks(heading):
+            for tr in b.select("tbody tr"):
+                cells = [td.get_text(" ", strip=True) for td in tr.select("td")]
+                if cells[0] == name:
+                    return cells
+        raise AssertionError(f"{dotted}: no row {name}")
 
-    assert {"m/s", "Hz"} <= set(units_of("skilllib.smoothness.sparc"))
-    assert "rad/s" in units_of("skilllib.robot.transfer")
-    assert {"m", "s"} <= set(units_of("skilllib.smoothness.minimum_jerk_speed"))
+    assert row("skilllib.smoothness.sparc", "speed")[2] == "m/s"
+    assert row("skilllib.smoothness.sparc", "fs")[2] == "Hz"
+    assert "rad/s" in row("skilllib.robot.transfer", "qd_limits")[2]
     # docstrings rendered, not shown as reST source or as docutils error messages
-    text = page.article.get_text(" ")
-    assert not re.search(r":(func|class|mod|meth|attr|data):`", text), "reST roles left in the API page"
-    assert "System Message" not in text and "problematic" not in page.html
-    assert page.article.select("a.xref"), "the docstrings' :func: references are not links"
-    # the sidebar lists it and the chapters link to it
-    assert any(a.get("href") == "api.html" for a in site.page("index.md").soup.select("nav.toc a"))
-    linked = {
-        a["data-xref"]
-        for p in site.pages
-        if p.file != "api.md"
-        for a in p.soup.select("main a.xref")
-        if a["data-xref"].startswith("api.html#")
-    }
-    assert len(linked) >= 10, f"the chapters link to {len(linked)} API entries"
+    for page in pages.values():
+        text = page.article.get_text(" ")
+        assert not re.search(r":(func|class|mod|meth|attr|data):`", text), f"{page.file}: reST roles left"
+        assert "System Message" not in text and "problematic" not in page.html, page.file
+    assert pages["api-smoothness.md"].article.select(".docstring a.xref"), "the docstrings' :func: are not links"
+
+
+@pytest.mark.book_site
+def test_api_page_outline_lists_functions_and_classes_only():
+    site = built_site("book")
+    pages = _api_pages(site)
+    modules = {d.rsplit(".", 1)[0] for d in _public_api()}
+    sizes = {}
+    for file, page in pages.items():
+        headings = page.article.select("h2, h3, h4, h5, h6")
+        deeper = [h.get_text(strip=True) for h in headings if h.name not in ("h2", "h3")]
+        assert not deeper, f"{file}: headings below h3 (a docstring's sections?): {deeper[:5]}"
+        # every heading is an entry (skilllib.sub.name) or a module's section, none a docstring's
+        stray = [h.get_text(strip=True) for h in headings if not h.get("id", "").startswith("skilllib-")]
+        assert not stray, f"{file}: headings that are no API entry: {stray[:5]}"
+        links = page.soup.select("nav#outline a")
+        sizes[file] = len(links)
+        assert len(links) <= API_OUTLINE_MAX, f"{file}: {len(links)} outline entries"
+        # methods and properties are not headings: their label is on their signature
+        for h in headings:
+            name = (h.code or h).get_text(strip=True)
+            assert "." not in name or name in modules, f"{file}: heading {name}"
+    assert sum(sizes.values()) >= len(_public_api()), sizes
+    robot = pages["api-robot.md"]
+    member = robot.soup.find(id="skilllib-robot-arm-with-limits")
+    assert member is not None and "code-box" in member.get("class", []), "Arm.with_limits has no anchored signature"
+
+
+@pytest.mark.book_site
+def test_api_page_source_links_point_at_the_def_line():
+    import importlib
+
+    site = built_site("book")
+    root = Path(importlib.import_module("skilllib").__file__).resolve().parents[1]
+    base = os.environ.get("BOOK_SOURCE_URL", "").strip()
+    checked = 0
+    for file, page in _api_pages(site).items():
+        for kind in page.article.select("div.api-kind"):
+            link = next((a for a in kind.select("a") if a.get_text().startswith("source:")), None)
+            assert link is not None, f"{file}: {kind.get_text(' ', strip=True)}: no source link"
+            href = link["href"]
+            prefix = "../../" if href.startswith("../../") else (base if base and href.startswith(base) else None)
+            assert prefix is not None, f"{file}: {href} is neither relative to the checkout nor under BOOK_SOURCE_URL"
+            path, _, line = href[len(prefix) :].partition("#L")
+            source = root / path
+            assert source.is_file(), f"{file}: {href}: no such file"
+            name = kind.select_one("code").get_text().rsplit(".", 1)[-1].removesuffix("-class")
+            text = source.read_text(encoding="utf-8").splitlines()[int(line) - 1]
+            assert re.match(rf"\s*(async\s+def|def|class)\s+{re.escape(name)}\b", text), (
+                f"{file}: {href} is {text.strip()!r}, not the def/class of {name}"
+            )
+            checked += 1
+    assert checked >= len(_public_api()), checked
+
+
+@pytest.mark.book_site
+def test_api_page_index_and_chapters_link_to_the_entries():
+    site = built_site("book")
+    pages = _api_pages(site)
+    index = pages["api.md"]
+    by_url = {p.url: p for p in site.pages}
+    linked = {a["href"] for a in index.article.select("table a[href]")}
+    assert linked == {p.url for f, p in pages.items() if f != "api.md"}, "the index links every sub-package page"
+    toc = {a.get("href") for a in site.page("index.md").soup.select("nav.toc a")}
+    assert {p.url for p in pages.values()} <= toc, "the contents list the API pages"
+    entries = set()
+    for p in site.pages:
+        if p.file in pages:
+            continue
+        for a in p.soup.select("main a[href]"):
+            path, _, frag = a["href"].partition("#")
+            if path not in {q.url for q in pages.values()}:
+                continue
+            assert not frag or frag in by_url[path].ids, f"{p.url}: {a['href']} has no target"
+            entries.add(a["href"])
+    assert len(entries) >= 10, f"the chapters link to {len(entries)} API entries"
+
+
+def _api_page_cli(tmp_path, source: str, *args: str) -> subprocess.CompletedProcess:
+    pkg = tmp_path / "brokenpkg"
+    pkg.mkdir(exist_ok=True)
+    (pkg / "__init__.py").write_text('"""A package."""\n', encoding="utf-8")
+    (pkg / "mod.py").write_text(source, encoding="utf-8")
+    return subprocess.run(
+        [sys.executable, str(ROOT / "scripts" / "api_page.py"), "--package", "brokenpkg", *args],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        env={**os.environ, "PYTHONPATH": str(tmp_path)},
+    )
 
 
 def test_api_page_stops_on_a_docstring_markup_error(tmp_path):
-    """A docstring docutils cannot read stops the page, naming the object and the line."""
-    pkg = tmp_path / "brokenpkg"
-    pkg.mkdir()
-    (pkg / "__init__.py").write_text('"""A package."""\n', encoding="utf-8")
-    (pkg / "mod.py").write_text(
-        'def f(x):\n    """Speed |v| in m/s.\n\n    Second line with :func:`g`."""\n'
-        '    return x\n\n\ndef g():\n    """Fine, in s."""\n',
-        encoding="utf-8",
+    """A docstring docutils cannot read stops the pages, naming the object and the docstring's line
+    (in a parameter's description too)."""
+    broken = (
+        'def f(x):\n    """Speed.\n\n    Parameters\n    ----------\n    x : float\n'
+        '        Speed |v| (m/s).\n    """\n    return x\n\n\ndef g():\n    """Fine, in s."""\n'
     )
-    proc = subprocess.run(
-        [sys.executable, str(ROOT / "scripts" / "api_page.py"), "--package", "brokenpkg"],
-        cwd=tmp_path,
-        capture_output=True,
-        text=True,
-        env={**os.environ, "PYTHONPATH": str(tmp_path)},
-    )
+    proc = _api_page_cli(tmp_path, broken, "--page", "api-mod.md")
     assert proc.returncode == 1
-    assert "brokenpkg.mod.f" in proc.stderr and "docstring line 1" in proc.stderr and "substitution" in proc.stderr
-    (pkg / "mod.py").write_text(
-        'def f(x):\n    """Speed ``|v|`` in m/s, see :func:`g`."""\n    return x\n\n\n'
-        'def g():\n    """Fine, in s."""\n',
-        encoding="utf-8",
-    )
-    proc = subprocess.run(
-        [sys.executable, str(ROOT / "scripts" / "api_page.py"), "--package", "brokenpkg"],
-        cwd=tmp_path,
-        capture_output=True,
-        text=True,
-        env={**os.environ, "PYTHONPATH": str(tmp_path)},
-    )
+    assert "brokenpkg.mod.f" in proc.stderr and "docstring line 6" in proc.stderr and "substitution" in proc.stderr
+    fixed = broken.replace("Speed |v| (m/s).", "Speed ``|v|`` (m/s), see :func:`g`.")
+    proc = _api_page_cli(tmp_path, fixed, "--page", "api-mod.md")
     assert proc.returncode == 0, proc.stderr
-    assert "(brokenpkg.mod.f)=" in proc.stdout and "**Units:** `m/s`" in proc.stdout
+    assert "(brokenpkg.mod.f)=" in proc.stdout and "label: brokenpkg.mod" in proc.stdout
+    assert "<tr><td><code>x</code></td><td>float</td><td>m/s</td><td>Speed <code>|v|</code> (m/s), see " in proc.stdout
     assert '<a class="reference external" href="#brokenpkg.mod.g"><code>g()</code></a>' in proc.stdout
+    assert _api_page_cli(tmp_path, fixed).stdout.split() == ["api.md", "api-mod.md"]
 
 
 # ---------------------------------------------------------------- the execution cache --

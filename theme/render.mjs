@@ -30,10 +30,10 @@ import { micromark } from 'micromark';
 const THEME = path.dirname(fileURLToPath(import.meta.url));
 const require_ = (p) => path.join(THEME, 'node_modules', p);
 const lowlight = createLowlight(common);
-// Same options in the browser (static/site.js): keep in sync.
+// The search index's fields: static/search.js builds a MiniSearch index with these options from the
+// sections' text in _static/search-index.js, the first time the search box is used.
 const SEARCH_OPTIONS = {
   fields: ['page', 'section', 'text'],
-  storeFields: ['page', 'section', 'url'],
 };
 
 // ---------------------------------------------------------------- input and output -------------
@@ -132,6 +132,39 @@ function highlight(code, lang) {
     } catch { /* fall through to plain text */ }
   }
   return [text(code)];
+}
+
+// A printed text that reads as prose (sentences) rather than a table: it may wrap on screen. Tabular
+// prints (columns aligned by runs of spaces, rules of - = or box lines) keep their lines.
+function isProse(t) {
+  const lines = t.split('\n').filter((l) => l.trim());
+  if (!lines.length) return false;
+  const tabular = lines.filter((l) => /\S {2,}\S|^\s*[-=─━┄_]{4,}|[│┃|].*[│┃|]|\t/.test(l)).length;
+  return tabular === 0 || (tabular === 1 && lines.length >= 4);
+}
+
+// A description of at most ~155 characters, cut at a word.
+function clip(s, n = 155) {
+  s = s.replace(/\s+/g, ' ').trim();
+  if (s.length <= n) return s;
+  return s.slice(0, s.lastIndexOf(' ', n - 1) > n / 2 ? s.lastIndexOf(' ', n - 1) : n - 1).replace(/[,;:.\s]+$/, '') + '…';
+}
+
+// Where pages link their source and the licence: BOOK_SOURCE_URL (e.g. https://github.com/org/repo/blob/main/),
+// else BOOK_SOURCE_RELATIVE, the repository relative to the site (scripts/build_site.py; "../../" for
+// _build/html). BOOK_SOURCE_ROOT is the checkout: only files that exist there are linked.
+const SOURCE = {
+  base: (() => { const b = process.env.BOOK_SOURCE_URL || process.env.BOOK_SOURCE_RELATIVE || '../../'; return b.endsWith('/') ? b : `${b}/`; })(),
+  root: process.env.BOOK_SOURCE_ROOT || '',
+};
+function sourceExists(rel) { return !SOURCE.root || fs.existsSync(path.join(SOURCE.root, rel)); }
+function sourceFile(file) {
+  if (!file || !SOURCE.root) return null; // without the checkout we cannot tell which files are in it
+  if (file.endsWith('.ipynb')) {
+    const py = file.replace(/\.ipynb$/, '.py');
+    if (sourceExists(py)) return py;
+  }
+  return sourceExists(file) ? file : null;
 }
 
 // ---------------------------------------------------------------- MyST AST -> hast -------------
@@ -283,6 +316,13 @@ class Page {
   n_link(n) {
     // `[](#label)` with no target reaches us as an empty link: show it (myst has warned already).
     if (!n.children?.length && n.url?.startsWith('#')) return h('span.xref.unresolved', n.url);
+    // `source:skilllib/x.py#L12` (the API pages, scripts/api_page.py): a file of the repository, linked
+    // as "View source" is (SOURCE); a file the checkout does not have is shown, not linked.
+    if (n.url?.startsWith('source:')) {
+      const rel = n.url.slice('source:'.length);
+      if (SOURCE.root && !sourceExists(rel.split('#')[0])) return h('span.source-missing', this.all(n.children));
+      return h('a.api-source', { href: SOURCE.base + rel, title: n.title }, this.all(n.children));
+    }
     const href = this.href(n.url);
     const external = /^[a-z]+:/i.test(href ?? '');
     return h('a', { href, title: n.title, className: external ? ['external'] : undefined }, this.all(n.children));
@@ -335,7 +375,9 @@ class Page {
   n_image(n) {
     const src = this.href(n.url);
     const style = n.width ? `width: ${n.width}` : undefined;
-    return h('img', { src, alt: n.alt ?? this.figureAlt ?? '', title: n.title, style, className: n.align ? [`align-${n.align}`] : undefined });
+    const img = h('img', { src, alt: n.alt ?? this.figureAlt ?? '', title: n.title, style, loading: 'lazy', decoding: 'async',
+      className: n.align ? [`align-${n.align}`] : undefined });
+    return this.figureAlt != null ? h('span.image-frame', img) : img;
   }
   n_iframe(n) { return h('div.iframe-note', ['Embedded content: ', h('a', { href: n.src }, n.src)]); }
   n_table(n) {
@@ -374,7 +416,8 @@ class Page {
     const d = n.jupyter_data;
     if (!d) return this.all(n.children);
     if (d.output_type === 'stream') {
-      return h('pre', { className: ['output', 'stream', d.name] }, terminalText(d.text));
+      const t = terminalText(d.text);
+      return h('pre', { className: ['output', 'stream', d.name, isProse(t) ? 'prose' : null].filter(Boolean) }, t);
     }
     if (d.output_type === 'error') {
       const tb = Array.isArray(d.traceback) ? d.traceback.join('\n') : d.traceback;
@@ -385,8 +428,12 @@ class Page {
   mimeBundle(data, metadata) {
     const content = (m) => data[m]?.content;
     // Retina PNGs carry their display size in the output metadata; CSS scales them down further.
-    const img = (m, src) => h('img.output', { src, alt: this.figureAlt ?? 'Cell output',
-      width: metadata[m]?.width, height: metadata[m]?.height });
+    // Each image sits in a frame: at its drawn size on desktop, scrolled sideways on a phone (theme.css).
+    const img = (m, src) => {
+      const size = displaySize(data[m]?.pixels, metadata[m]);
+      return h('span.image-frame', h('img.output', { src, alt: this.figureAlt ?? 'Cell output',
+        width: size?.[0], height: size?.[1], loading: 'lazy', decoding: 'async' }));
+    };
     for (const m of ['image/png', 'image/jpeg', 'image/gif', 'image/webp']) {
       if (data[m]?.path) return img(m, this.site.asset(data[m].path));
       if (content(m)) { // small images may come inline as base64
@@ -442,11 +489,36 @@ class Page {
         downloads.length ? h('p.download', [h('span.download-label', 'Download'),
           ...downloads.map((d) => h('a', { href: d.href, download: d.name, title: d.title }, [
             h('span', { ariaHidden: 'true' }, '⤓ '), d.name]))]) : null,
+        this.sourceLink(),
       ].filter(Boolean)),
       ...[body].flat(),
       this.footnoteSection(),
       references,
     ].filter(Boolean));
+  }
+
+  // "View source": the page's file in the repository (a chapter's paired .py script rather than its
+  // notebook), at BOOK_SOURCE_URL, or relative to the site in a checkout (scripts/build_site.py).
+  sourceLink() {
+    const rel = sourceFile(this.entry.file);
+    if (!rel) return null;
+    return h('p.view-source', h('a.source-link', { href: SOURCE.base + rel, title: `The source of this page: ${rel}` },
+      [h('span', { ariaHidden: 'true' }, '</> '), 'View source ', h('code', rel)]));
+  }
+
+  // The page's description for <meta name="description">: its front matter's, else its first paragraph.
+  description() {
+    const fm = this.data.frontmatter ?? {};
+    if (fm.description) return clip(String(fm.description));
+    let first = null;
+    const walk = (n) => {
+      if (first || !n) return;
+      if (n.type === 'paragraph') { const t = plainText(n).replace(/\s+/g, ' ').trim(); if (t.length > 20) first = t; return; }
+      if (['code', 'outputs', 'container', 'admonition', 'aside'].includes(n.type)) return;
+      (n.children ?? []).forEach(walk);
+    };
+    walk(this.data.mdast);
+    return first ? clip(first) : null;
   }
 
   // "On this page": the page's sections (h2, h3). Wide screens show it beside the text, narrow ones
@@ -458,6 +530,24 @@ class Page {
     return h('nav#outline.outline', { ariaLabel: 'On this page' },
       h('details', [h('summary', 'On this page'), h('ol', items)]));
   }
+}
+
+// The width and height of a PNG from its IHDR chunk, or null.
+function pngSize(buf) {
+  if (!buf || buf.length < 24 || buf.readUInt32BE(12) !== 0x49484452) return null;
+  return [buf.readUInt32BE(16), buf.readUInt32BE(20)];
+}
+
+// The CSS size of an output image. A high-resolution PNG (the kernel's retina figures, or a PNG file shown
+// with a width of about half its pixels) is shown at half its pixels: the size it was drawn for, neither
+// enlarged nor shrunk (its labels keep their size in points). Another keeps the width its output asks
+// for, or its pixel size.
+function displaySize(pixels, meta) {
+  const w = Number(meta?.width) || null;
+  if (!pixels) return w ? [w, Number(meta?.height) || undefined] : null;
+  const [pw, ph] = pixels;
+  const width = w ? (pw >= 1.5 * w ? pw / 2 : w) : pw;
+  return [Math.round(width), Math.round((width * ph) / pw)];
 }
 
 // mystmd stores outputs over 25,000 characters apart (a `path` on the content server) and keeps a
@@ -473,6 +563,12 @@ async function inlineStoredOutputs(node) {
       if (entry?.path && entry.content == null && !mime.startsWith('image/')) {
         jobs.push(fetchFrom(entry.path, 'text').then((t) => { entry.content = t; }));
       }
+      // a PNG's pixel size (from its header), for the <img>'s width and height (displaySize)
+      if (mime === 'image/png' && entry?.path) {
+        jobs.push(fetchFrom(entry.path, 'binary').then((b) => { entry.pixels = pngSize(b); }));
+      } else if (mime === 'image/png' && entry?.content) {
+        entry.pixels = pngSize(Buffer.from(entry.content.slice(0, 64), 'base64'));
+      }
     }
     (n.children ?? []).forEach(walk);
   };
@@ -482,21 +578,31 @@ async function inlineStoredOutputs(node) {
 
 // ---------------------------------------------------------------- search index ----------------
 
-// One search document per section (text between headings) so results can jump to the section.
+// One search document per section (text between headings of depth <= 3: an API entry's "Parameters"
+// or "Returns" stay in the entry's section) so results can jump to the section. `kind` ranks the
+// results in the browser: chapters first, then the other pages, API entries last.
+const SEARCH_SECTION_DEPTH = 3;
+function searchKind(entry) {
+  const file = entry.file ?? '';
+  if (/^api([-_.]|$)/.test(path.posix.basename(file)) || /^api([-_.]|$)/.test(entry.href ?? '')) return 'api';
+  if (file.endsWith('.ipynb') || entry.chapter) return 'chapter';
+  return 'docs';
+}
 function searchDocuments(entry, data) {
   const href = entry.href;
+  const kind = searchKind(entry);
   const docs = [];
   let current = { section: '', anchor: '', parts: [] };
   const flush = () => {
-    const t = current.parts.join(' ').replace(/\s+/g, ' ').trim();
+    const t = current.parts.join('').replace(/\s+/g, ' ').trim();
     if (t || current.section) {
-      docs.push({ id: `${href}#${current.anchor}`, url: current.anchor ? `${href}#${current.anchor}` : href,
-        page: entry.title, section: current.section, text: t });
+      docs.push({ url: current.anchor ? `${href}#${current.anchor}` : href, page: entry.title, kind,
+        section: current.section, text: t });
     }
   };
   const walk = (node) => {
     if (!node) return;
-    if (node.type === 'heading') {
+    if (node.type === 'heading' && (node.depth ?? 1) <= SEARCH_SECTION_DEPTH) {
       flush();
       current = { section: plainText(node).trim(), anchor: node.html_id ?? node.identifier ?? '', parts: [] };
       return;
@@ -504,11 +610,26 @@ function searchDocuments(entry, data) {
     if (['code', 'outputs', 'math', 'inlineMath', 'comment', 'html'].includes(node.type)) return;
     if (node.type === 'text' || node.type === 'inlineCode') current.parts.push(node.value);
     (node.children ?? []).forEach(walk);
-    if (['paragraph', 'listItem', 'tableCell', 'caption'].includes(node.type)) current.parts.push(' ');
+    if (['paragraph', 'listItem', 'tableCell', 'caption', 'heading', 'break', 'tableRow'].includes(node.type)) current.parts.push(' ');
   };
   walk(data.mdast);
   flush();
   return docs;
+}
+// What _static/search-index.js holds: the pages (url, title, kind) and per section [page number,
+// heading, anchor, text]; no prebuilt index (the text is smaller, and snippets need it).
+function searchIndexData(documents) {
+  const pages = [];
+  const number = new Map();
+  const sections = documents.map((d) => {
+    const url = d.url.split('#')[0];
+    if (!number.has(url)) {
+      number.set(url, pages.length);
+      pages.push({ url, title: d.page, kind: d.kind });
+    }
+    return [number.get(url), d.section, d.url.includes('#') ? d.url.slice(d.url.indexOf('#') + 1) : '', d.text];
+  });
+  return { version: 2, options: SEARCH_OPTIONS, pages, sections };
 }
 
 // ---------------------------------------------------------------- hover previews --------------
@@ -593,11 +714,14 @@ function tocNav(site, current) {
 
 const HEAD_SCRIPT = "try{var t=localStorage.getItem('book-theme');if(t==='dark'||t==='light')document.documentElement.dataset.theme=t}catch(e){}";
 
-function pageShell(site, entry, article, outline, previewKeys) {
+function pageShell(site, entry, article, outline, previewKeys, description) {
   const i = site.pages.indexOf(entry);
   const prev = site.pages[i - 1];
   const next = site.pages[i + 1];
   const title = entry.slug === site.indexSlug ? site.title : `${entry.title} — ${site.title}`;
+  const previews = previewKeys.map((key) => site.previews.get(key));
+  // KaTeX's stylesheet only where there is math (in the text or in a preview the page carries).
+  const hasMath = /class="katex/.test(toHtml([article, ...previews.flat()].filter(Boolean)));
   const search = h('div.search', { role: 'search' }, [
     h('label.visually-hidden', { htmlFor: 'search-input' }, 'Search the book'),
     h('input#search-input', { type: 'search', placeholder: 'Search the book…', autocomplete: 'off', spellcheck: 'false' }),
@@ -611,8 +735,10 @@ function pageShell(site, entry, article, outline, previewKeys) {
         h('meta', { name: 'viewport', content: 'width=device-width, initial-scale=1' }),
         h('meta', { name: 'color-scheme', content: 'light dark' }),
         h('title', title),
-        site.description ? h('meta', { name: 'description', content: site.description }) : null,
-        h('link', { rel: 'stylesheet', href: '_static/katex/katex.min.css' }),
+        description || site.description ? h('meta', { name: 'description', content: description || clip(site.description) }) : null,
+        site.authors.length ? h('meta', { name: 'author', content: site.authors.join(', ') }) : null,
+        h('link', { rel: 'icon', href: '_static/favicon.svg', type: 'image/svg+xml' }),
+        hasMath ? h('link', { rel: 'stylesheet', href: '_static/katex/katex.min.css' }) : null,
         h('link', { rel: 'stylesheet', href: '_static/theme.css' }),
         // the reader's light/dark choice, before the first paint (no flash of the other theme)
         h('script', HEAD_SCRIPT),
@@ -631,7 +757,9 @@ function pageShell(site, entry, article, outline, previewKeys) {
             h('a.site-title', { href: site.pageFiles.get(site.indexSlug) }, site.title),
             search,
             tocNav(site, entry),
-          ]),
+            site.pdf ? h('p.pdf-link', h('a', { href: site.pdf, title: 'The whole book as one PDF file' }, [
+              h('span', { ariaHidden: 'true' }, '⤓ '), 'The book as PDF'])) : null,
+          ].filter(Boolean)),
           outline,
           h('main#content', [
             article,
@@ -643,15 +771,18 @@ function pageShell(site, entry, article, outline, previewKeys) {
               h('span.build-version', ['Version ', h('strong', site.build.version)]),
               h('span.build-commit', ['Commit ', h('code', site.build.commit)]),
               h('span.build-date', ['Built ', site.build.date]),
-            ]),
+              site.authors.length ? h('span.book-authors', ['By ', site.authors.join(', ')]) : null,
+              site.license ? h('span.book-license', ['Licence ', site.license.href
+                ? h('a', { href: site.license.href, rel: 'license' }, site.license.name) : site.license.name]) : null,
+              site.pdf ? h('span.book-pdf', h('a', { href: site.pdf }, 'PDF of the book')) : null,
+            ].filter(Boolean)),
           ]),
         ].filter(Boolean)),
         // Previews of the cross-references on this page (static/site.js shows them on hover).
-        previewKeys.length ? h('div#xref-previews', { hidden: true }, previewKeys.map((key) =>
-          h('template', { dataXref: key }, site.previews.get(key)))) : null,
-        // Plain scripts with relative src: fetch() of file:// is blocked, <script src> is not.
-        h('script', { src: '_static/minisearch.js' }),
-        h('script', { src: '_static/search-index.js' }),
+        previewKeys.length ? h('div#xref-previews', { hidden: true }, previewKeys.map((key, k) =>
+          h('template', { dataXref: key }, previews[k]))) : null,
+        // Plain scripts with relative src: fetch() of file:// is blocked, <script src> is not. The search
+        // index (search-index.js, minisearch.js) is loaded by search.js when the box is first used.
         h('script', { src: '_static/site.js' }),
         h('script', { src: '_static/search.js' }),
       ]),
@@ -661,6 +792,18 @@ function pageShell(site, entry, article, outline, previewKeys) {
 }
 
 // ---------------------------------------------------------------- main ------------------------
+
+// The book's licence for the footer: myst.yml's `project.license` (myst hands it over normalised, with
+// an SPDX id and a URL), else the first line of LICENSE in the checkout. Links the LICENSE file of the
+// repository when there is one (works offline), else the licence's URL.
+function bookLicense(project) {
+  const lic = project.license?.content ?? project.license?.code ?? (typeof project.license === 'string' ? { id: project.license } : null);
+  let name = lic?.id ?? lic?.name ?? null;
+  const licenseFile = ['LICENSE', 'LICENSE.md', 'LICENSE.txt'].find((f) => SOURCE.root && fs.existsSync(path.join(SOURCE.root, f)));
+  if (!name && licenseFile) name = fs.readFileSync(path.join(SOURCE.root, licenseFile), 'utf8').split('\n').find((l) => l.trim())?.trim() ?? null;
+  if (!name) return null;
+  return { name, href: licenseFile ? SOURCE.base + licenseFile : lic?.url ?? null };
+}
 
 function tocFiles(toc) {
   return (toc ?? []).flatMap((e) => [...(e.file ? [e.file] : []), ...tocFiles(e.children)]);
@@ -713,6 +856,11 @@ async function main() {
   const pendingAssets = new Map(); // route -> relative output path
   const site = {
     title, description: project.description, indexSlug: project.index, pageFiles, pages, nav,
+    authors: (project.authors ?? []).map((a) => a.name ?? a.nameParsed?.literal).filter(Boolean),
+    license: bookLicense(project),
+    // BOOK_PDF: the PDF of the book, relative to the site (scripts/build_site.py --pdf sets "book.pdf";
+    // the PDF step writes it after this render). Without it no page links a PDF.
+    pdf: process.env.BOOK_PDF || null,
     asset(route) {
       if (!pendingAssets.has(route)) pendingAssets.set(route, `assets/${path.posix.basename(route)}`);
       return pendingAssets.get(route);
@@ -770,7 +918,7 @@ async function main() {
   for (const { entry, page, article } of rendered) {
     try {
       const keys = [...page.xrefTargets].filter((k) => site.previews.has(k)).sort();
-      write(entry.href, pageShell(site, entry, article, page.outline(), keys));
+      write(entry.href, pageShell(site, entry, article, page.outline(), keys, page.description()));
     } catch (err) {
       failures.push(`page "${entry.file || entry.slug}" failed to render: ${err.stack ?? err}`);
     }
@@ -784,11 +932,9 @@ async function main() {
     }
   }));
 
-  // Search: the index is built here and shipped as a script that sets a global.
-  const mini = new MiniSearch(SEARCH_OPTIONS);
-  mini.addAll(documents);
-  const searchData = { pages: pages.map((p) => ({ url: p.href, title: p.title, file: p.file })), options: SEARCH_OPTIONS, index: mini.toJSON() };
-  write('_static/search-index.js', `window.BOOK_SEARCH = ${JSON.stringify(searchData)};\n`);
+  // Search: the sections' text, shipped as a script that sets a global (search.js builds the index
+  // from it in the browser, when the search box is first used).
+  write('_static/search-index.js', `window.BOOK_SEARCH = ${JSON.stringify(searchIndexData(documents))};\n`);
 
   // Static files: theme CSS/JS, MiniSearch's browser build, KaTeX CSS with its woff2 fonts only.
   for (const f of fs.readdirSync(path.join(THEME, 'static'))) fs.copyFileSync(path.join(THEME, 'static', f), path.join(OUT, '_static', f));

@@ -7,7 +7,8 @@ Every function takes data (arrays, DataFrames, result objects) and returns a mat
 filters), ``scale`` (time and memory against N), ``segmentation`` (every trial's segmentation, page by page),
 ``measures`` (clusterings on measures of corrections), ``measurement`` (SPARC's measurement spread),
 ``draws`` (the headline results over many draws of the cohort), ``limits`` (the robot verdicts against
-the assumed limits).
+the assumed limits). ``_style`` holds the book's figure style: every figure function draws in it, at
+most :data:`WIDE` in wide with no text below :data:`MIN_FONT` pt (:func:`book_style` applies it globally).
 This package may import the other skilllib modules; none of them imports it.
 """
 
@@ -16,6 +17,7 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 
 from ._common import CLUSTER_COLORS, save
+from ._style import FULL_WIDTH, MIN_FONT, SINGLE, WIDE, book_style
 from .clusters import (
     plot_cluster_participants,
     plot_clusters,
@@ -77,18 +79,27 @@ from .smoothness import (
     plot_short_segments,
     plot_sparc_against,
     plot_sparc_spectra,
+    plot_spectra_side_by_side,
+    plot_speed_profiles,
     plot_speeds_and_spectra,
 )
 
 __all__ = [
     "plt",
     "save",
+    "book_style",
+    "FULL_WIDTH",
+    "WIDE",
+    "SINGLE",
+    "MIN_FONT",
     "CLUSTER_COLORS",
     "PARTICIPANT_COLORS",
     "JOINT_COLORS",
     "few_participants",
     "MAX_FIGURE_PARTICIPANTS",
     "plot_sparc_spectra",
+    "plot_speed_profiles",
+    "plot_spectra_side_by_side",
     "plot_speeds_and_spectra",
     "plot_sparc_against",
     "plot_padded_spectra",

@@ -9,6 +9,7 @@ import pandas as pd
 from ..features import FEATURE_UNITS, feature_label
 from ..prototypes import PrototypeResult, SilhouetteSweep, SparcSensitivity
 from ._common import CLUSTER_COLORS
+from ._style import SINGLE, WIDE, book_figure
 
 #: The paper's clustering features: the figures' wording for them is the book's (``"0 = lowest PV"``).
 _PAPER = ("pv", "sparc")
@@ -32,6 +33,7 @@ def _value_text(name: str, value: float) -> str:
     return f"{_short(name)} = {value:.2f}" + (f" {unit}" if unit else "")
 
 
+@book_figure
 def plot_silhouette_sweep(sweep: SilhouetteSweep, chosen_k: int | None = None) -> plt.Figure:
     """Average silhouette (Rousseeuw 1987) against k, valid k filled.
 
@@ -53,7 +55,7 @@ def plot_silhouette_sweep(sweep: SilhouetteSweep, chosen_k: int | None = None) -
     """
     ks, scores = sweep.ks, sweep.scores
     valid = np.array([sweep.results[k].valid for k in ks])
-    fig, ax = plt.subplots(figsize=(5.5, 3.4))
+    fig, ax = plt.subplots(figsize=(SINGLE, 3.8), layout="constrained")
     ax.plot(ks, scores, color="0.6", lw=1, zorder=1)
     est = [sweep.results[k].silhouette_estimate for k in ks]
     if all(e is not None for e in est):
@@ -92,6 +94,7 @@ def plot_silhouette_sweep(sweep: SilhouetteSweep, chosen_k: int | None = None) -
     return fig
 
 
+@book_figure
 def plot_silhouettes(result: PrototypeResult) -> plt.Figure:
     """Silhouette plot ("knife plot", as in scikit-learn's example) of one clustering.
 
@@ -113,7 +116,7 @@ def plot_silhouettes(result: PrototypeResult) -> plt.Figure:
     est = result.silhouette_estimate
     failing = set(result.failing_clusters())
     gap = max(2, len(s) // 60)
-    fig, ax = plt.subplots(figsize=(5, 3 + 0.1 * result.k))
+    fig, ax = plt.subplots(figsize=(SINGLE, 3 + 0.12 * result.k), layout="constrained")
     y0 = gap
     for c in range(result.k):
         sc = np.sort(s[labels == c])
@@ -124,7 +127,7 @@ def plot_silhouettes(result: PrototypeResult) -> plt.Figure:
             f"{c}*" if c in failing else str(c),
             ha="right",
             va="center",
-            fontsize="small" if result.k <= 10 else "x-small",
+            fontsize="small",
         )
         y0 += len(sc) + gap
     ax.axvline(avg, color="k", ls="--", lw=1)
@@ -149,6 +152,7 @@ def plot_silhouettes(result: PrototypeResult) -> plt.Figure:
     return fig
 
 
+@book_figure
 def plot_clusters(result: PrototypeResult) -> plt.Figure:
     """PV-SPARC tuples coloured by cluster, with the centres (x) and the prototype trials (circled).
 
@@ -172,7 +176,7 @@ def plot_clusters(result: PrototypeResult) -> plt.Figure:
     d = result.data
     features = tuple(result.features)
     fx, fy = features[:2]
-    fig, ax = plt.subplots(figsize=(5.5, 4))
+    fig, ax = plt.subplots(figsize=(7.6, 4.4), layout="constrained")
     for c in range(result.k):
         m = d["cluster"].to_numpy() == c
         ax.scatter(
@@ -215,10 +219,11 @@ def plot_clusters(result: PrototypeResult) -> plt.Figure:
             f"clusters, centres and prototypes in all {len(features)} ({result.scaling} scaling)",
             fontsize="small",
         )
-    ax.legend(fontsize="x-small", frameon=False, loc="center left", bbox_to_anchor=(1.01, 0.5))
+    ax.legend(fontsize="small", frameon=False, loc="center left", bbox_to_anchor=(1.01, 0.5))
     return fig
 
 
+@book_figure
 def plot_prototype_profiles(
     profiles: list[tuple[np.ndarray, np.ndarray]],
     prototypes: pd.DataFrame,
@@ -245,7 +250,7 @@ def plot_prototype_profiles(
     if len(profiles) != len(prototypes):
         raise ValueError(f"{len(profiles)} speed profiles for {len(prototypes)} prototypes")
     features = [col for col in prototypes.columns if col not in _NOT_FEATURES]
-    fig, ax = plt.subplots(figsize=(5.5, 3.6))
+    fig, ax = plt.subplots(figsize=(8.0, 3.8), layout="constrained")
     for (c, p), (t, v) in zip(prototypes.iterrows(), profiles):
         ax.plot(
             np.asarray(t),
@@ -257,10 +262,11 @@ def plot_prototype_profiles(
     ax.set_xlabel("time (s)")
     ax.set_ylabel("speed (m/s)")
     ax.set_ylim(bottom=0)
-    ax.legend(fontsize="x-small", frameon=False)
+    ax.legend(fontsize="small", frameon=False, loc="center left", bbox_to_anchor=(1.01, 0.5))
     return fig
 
 
+@book_figure
 def plot_stability(ari: dict[str, np.ndarray], seed: int = 0) -> plt.Figure:
     """Adjusted Rand indices as one jittered strip per entry of ``ari``, each with its median.
 
@@ -283,7 +289,7 @@ def plot_stability(ari: dict[str, np.ndarray], seed: int = 0) -> plt.Figure:
     """
     if not ari:
         raise ValueError("no ARI series to plot")
-    fig, ax = plt.subplots(figsize=(7, 3.4))
+    fig, ax = plt.subplots(figsize=(7, 3.4), layout="constrained")
     jitter = np.random.default_rng(seed)
     for i, a in enumerate(np.asarray(v, dtype=float) for v in ari.values()):
         ax.scatter(i + jitter.uniform(-0.15, 0.15, a.size), a, s=14, alpha=0.7, color="C0")
@@ -294,6 +300,7 @@ def plot_stability(ari: dict[str, np.ndarray], seed: int = 0) -> plt.Figure:
     return fig
 
 
+@book_figure
 def plot_sparc_sensitivity(sens: SparcSensitivity) -> plt.Figure:
     """SPARC and silhouettes under every SPARC setting against the reference setting.
 
@@ -311,7 +318,7 @@ def plot_sparc_sensitivity(sens: SparcSensitivity) -> plt.Figure:
     matplotlib.figure.Figure
         The figure; SPARC and silhouettes (dimensionless).
     """
-    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained")
+    fig, (a, b) = plt.subplots(1, 2, figsize=(WIDE, 4.0), layout="constrained")
     ref = sens.reference.selected["sparc"].to_numpy()
     for i, run in enumerate(sens.runs[1:], start=1):
         y = run.selected["sparc"].to_numpy()
@@ -331,17 +338,18 @@ def plot_sparc_sensitivity(sens: SparcSensitivity) -> plt.Figure:
     a.plot([lo, hi], [lo, hi], "--", color="0.4", lw=0.8)
     a.set_xlabel(f"SPARC, {sens.reference.label}")
     a.set_ylabel("SPARC, other setting")
-    a.legend(fontsize=7, frameon=False, loc="lower right")
+    a.legend(fontsize="small", frameon=False, loc="lower right")
     for i, run in enumerate(sens.runs):
         if run.sweep is not None:
             b.plot(run.sweep.ks, run.sweep.scores, "o-", ms=3, color=_cluster_color(i), label=run.label)
     b.axvline(sens.k, color="0.5", ls=":", lw=1)
     b.set_xlabel("number of clusters k")
     b.set_ylabel("average silhouette")
-    b.legend(fontsize=7, frameon=False)
+    b.legend(fontsize="small", frameon=False)
     return fig
 
 
+@book_figure
 def plot_cluster_participants(table: pd.DataFrame) -> plt.Figure:
     """Trials per cluster and participant as a heat map with the counts written in.
 
@@ -359,11 +367,11 @@ def plot_cluster_participants(table: pd.DataFrame) -> plt.Figure:
         The figure; the heat map of counts (dimensionless).
     """
     t = table.drop(index="all", columns="all", errors="ignore")
-    fig, ax = plt.subplots(figsize=(1.2 + 0.55 * t.shape[1], 0.9 + 0.45 * t.shape[0]), layout="constrained")
+    fig, ax = plt.subplots(figsize=(min(WIDE, 1.6 + 0.46 * t.shape[1]), 0.9 + 0.45 * t.shape[0]), layout="constrained")
     im = ax.imshow(t.to_numpy(), cmap="Greys", aspect="auto")
     vmax = t.to_numpy().max()
     for (i, j), n in np.ndenumerate(t.to_numpy()):
-        ax.text(j, i, str(n), ha="center", va="center", fontsize=7, color="white" if n > 0.6 * vmax else "black")
+        ax.text(j, i, str(n), ha="center", va="center", fontsize=8, color="white" if n > 0.6 * vmax else "black")
     ax.set_xticks(range(t.shape[1]), [str(c) for c in t.columns])
     ax.set_yticks(range(t.shape[0]), [str(r) for r in t.index])
     ax.set_xlabel("participant")

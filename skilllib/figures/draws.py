@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 
 from ..cohort import DRAW_QUANTITIES, SEED
+from ._style import WIDE, book_figure
 
 #: Colours: the draws, the book's draw, the paper's value.
 DRAW_COLOR, BOOK_COLOR, PAPER_COLOR = "0.55", "tab:red", "black"
@@ -19,6 +20,7 @@ def _value_text(v: float) -> str:
     return f"{v:.0f}" if float(v).is_integer() or abs(v) >= 100 else f"{v:.3f}"
 
 
+@book_figure
 def plot_draws(
     table: pd.DataFrame,
     seed: int = SEED,
@@ -67,7 +69,7 @@ def plot_draws(
     names = {**DRAW_QUANTITIES, **(labels or {})}
     paper = dict(paper or {})
     rng = np.random.default_rng(0)
-    fig, ax = plt.subplots(figsize=(10.0, 0.36 * len(cols) + 1.3))
+    fig, ax = plt.subplots(figsize=(WIDE, 0.36 * len(cols) + 1.3))
     for i, col in enumerate(cols):
         x = table[col].astype(float)
         mean, sd = x.mean(), x.std(ddof=1)

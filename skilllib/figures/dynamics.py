@@ -11,6 +11,7 @@ import numpy as np
 from ..robot import LIMIT_NAMES, Assessment, JointDynamics
 from ..smoothness import sparc
 from ._common import unique_legend_entries
+from ._style import book_figure, grid
 from .robot import JOINT_COLORS
 
 #: Colours of the three limits in the time-scale figure.
@@ -18,9 +19,8 @@ LIMIT_COLORS = {"velocity": "#4C72B0", "acceleration": "#DD8452", "torque": "#55
 
 
 def _panels(n_panels: int, ncols: int, sharey: bool = True) -> tuple[plt.Figure, np.ndarray, float]:
-    ncols = min(ncols, n_panels)
-    nrows = -(-n_panels // ncols)
-    width, height = max(3.6 * ncols, 7.5), 2.8 * nrows + 0.8
+    nrows, ncols, width = grid(n_panels, ncols, 3.0)
+    height = 2.8 * nrows + 0.8
     fig, axs = plt.subplots(nrows, ncols, figsize=(width, height), sharex=True, sharey=sharey, squeeze=False)
     for ax in axs.flat[n_panels:]:
         ax.set_visible(False)
@@ -93,6 +93,7 @@ def _joint_figure(
     return fig
 
 
+@book_figure
 def plot_joint_accelerations(
     dyns: Sequence[JointDynamics], titles: Sequence[str] | None = None, ncols: int = 3
 ) -> plt.Figure:
@@ -137,6 +138,7 @@ def plot_joint_accelerations(
     )
 
 
+@book_figure
 def plot_joint_torques(
     dyns: Sequence[JointDynamics], titles: Sequence[str] | None = None, ncols: int = 3
 ) -> plt.Figure:
@@ -194,6 +196,7 @@ def plot_joint_torques(
     )
 
 
+@book_figure
 def plot_executed_speed(
     assessments: Sequence[Assessment], titles: Sequence[str] | None = None, ncols: int = 3
 ) -> plt.Figure:
@@ -269,6 +272,7 @@ def plot_executed_speed(
     return fig
 
 
+@book_figure
 def dynamics_figures(assessments: Sequence[Assessment]) -> list[tuple[plt.Figure, str]]:
     """The pipeline's figures of the assessments of one arm, with their file names.
 
@@ -293,6 +297,7 @@ def dynamics_figures(assessments: Sequence[Assessment]) -> list[tuple[plt.Figure
     return out
 
 
+@book_figure
 def plot_time_scales(by_arm: Mapping[str, Sequence[JointDynamics]]) -> plt.Figure:
     """The stretch s each limit asks for alone and the one that satisfies all, per prototype and arm.
 
@@ -313,9 +318,8 @@ def plot_time_scales(by_arm: Mapping[str, Sequence[JointDynamics]]) -> plt.Figur
     if not by_arm:
         raise ValueError("plot_time_scales needs at least one arm")
     n = len(by_arm)
-    ncols = min(n, 2)
-    nrows = -(-n // ncols)
-    fig, axs = plt.subplots(nrows, ncols, figsize=(4.6 * ncols, 3.0 * nrows + 0.6), sharey=True, squeeze=False)
+    nrows, ncols, width = grid(n, 2, 4.5)
+    fig, axs = plt.subplots(nrows, ncols, figsize=(width, 3.0 * nrows + 0.6), sharey=True, squeeze=False)
     for ax in axs.flat[n:]:
         ax.set_visible(False)
     markers = {"velocity": "o", "acceleration": "s", "torque": "^"}
@@ -340,7 +344,7 @@ def plot_time_scales(by_arm: Mapping[str, Sequence[JointDynamics]]) -> plt.Figur
             if np.isfinite(s):
                 ax.plot([xi - 0.35, xi + 0.35], [s, s], color="k", lw=2, zorder=2)
                 if d.binding_limit:
-                    ax.text(xi, s + 0.04, d.binding_limit[:3] + ".", ha="center", va="bottom", fontsize="x-small")
+                    ax.text(xi, s + 0.04, d.binding_limit[:3] + ".", ha="center", va="bottom", fontsize="small")
         ax.axhline(1, color="0.5", lw=0.8, ls="--")
         ax.set_xticks(x, [str(d.transfer.cluster if d.transfer.cluster is not None else i) for i, d in enumerate(dyns)])
         ax.set_xlabel("cluster", fontsize="small")

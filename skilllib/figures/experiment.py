@@ -12,6 +12,7 @@ from matplotlib.collections import LineCollection
 from ..features import CONTACT_WINDOW, ONSET_SPEED, velocity
 from ..recordings import Recordings, sort_ids
 from ..smoothness import DEFAULT_AMP_TH
+from ._style import SINGLE, WIDE, book_figure
 
 #: Colours of the participants (in sorted participant order): tab10 with its grey replaced by black,
 #: because grey marks excluded trials.
@@ -110,6 +111,7 @@ def trials_window(
     return (float(lead.min()) - margin, float(np.clip(after, 0.0, AFTER_CONTACT_S)))
 
 
+@book_figure
 def plot_trials_by_participant(
     recordings: Recordings, features: pd.DataFrame, window: tuple[float, float] | None = None, *, end: str = "contact"
 ) -> plt.Figure:
@@ -147,7 +149,12 @@ def plot_trials_by_participant(
     prow = 1 if len(parts) <= 2 else 2  # rows of participants
     ncol = max(1, int(np.ceil(len(parts) / prow)))
     fig, axs = plt.subplots(
-        2 * prow, ncol, figsize=(max(2.1 * ncol, 3.2), 3.6 * prow + 0.2), sharex=True, sharey="row", squeeze=False
+        2 * prow,
+        ncol,
+        figsize=(min(WIDE, max(1.8 * ncol, 3.2)), 3.6 * prow + 0.2),
+        sharex=True,
+        sharey="row",
+        squeeze=False,
     )
     for i, p in enumerate(parts):
         ay, av = axs[2 * (i // ncol), i % ncol], axs[2 * (i // ncol) + 1, i % ncol]
@@ -218,6 +225,7 @@ def segmentation_examples(features: pd.DataFrame, speeds: tuple[float, float] = 
     return [tuple(features.loc[r, ["participant", "trial"]]) for r in rows]
 
 
+@book_figure
 def plot_segmentation(recordings: Recordings, features: pd.DataFrame, keys: list[tuple]) -> plt.Figure:
     """Onset/contact segmentation of example trials: y and approach speed against time.
 
@@ -240,7 +248,7 @@ def plot_segmentation(recordings: Recordings, features: pd.DataFrame, keys: list
     matplotlib.figure.Figure
         The figure; one column per example: y (m) and speed (m/s) against time (s).
     """
-    fig, axs = plt.subplots(2, len(keys), figsize=(2.6 * len(keys), 5.0), sharex="col", squeeze=False)
+    fig, axs = plt.subplots(2, len(keys), figsize=(min(WIDE, 2.3 * len(keys)), 5.0), sharex="col", squeeze=False)
     idx = features.set_index(["participant", "trial"])
     for j, (p, tr) in enumerate(keys):
         row = idx.loc[(p, tr)]
@@ -269,6 +277,7 @@ def plot_segmentation(recordings: Recordings, features: pd.DataFrame, keys: list
     return fig
 
 
+@book_figure
 def plot_participant_features(
     features: pd.DataFrame, *, window: tuple[float, float] | None = CONTACT_WINDOW, end: str = "contact"
 ) -> plt.Figure:
@@ -320,6 +329,7 @@ def plot_participant_features(
     return fig
 
 
+@book_figure
 def plot_contact_speeds(
     features: pd.DataFrame,
     bin_width: float = 0.05,
@@ -352,7 +362,7 @@ def plot_contact_speeds(
     """
     v = features.loc[features["status"] != "invalid", "contact_speed"].to_numpy()
     n_sel = int((features["status"] == "selected").sum())
-    fig, ax = plt.subplots(figsize=(5.5, 3.2)) if ax is None else (ax.figure, ax)
+    fig, ax = plt.subplots(figsize=(SINGLE, 3.4)) if ax is None else (ax.figure, ax)
     bins = np.arange(0, v.max() + bin_width, bin_width) if window is not None else "auto"  # no window: any scale
     ax.hist(v, bins=bins, color="0.55")
     if window is not None:
@@ -415,6 +425,7 @@ def _mark_capped(ax: plt.Axes, f: pd.DataFrame, x: str, amp_th: float) -> None:
     )
 
 
+@book_figure
 def plot_feature_space(
     features: pd.DataFrame, ax: plt.Axes | None = None, amp_th: float = DEFAULT_AMP_TH
 ) -> plt.Figure:
@@ -441,7 +452,7 @@ def plot_feature_space(
     """
     f = features[features["status"] != "invalid"]
     parts = sort_ids(f["participant"].unique())
-    fig, ax = plt.subplots(figsize=(6, 4)) if ax is None else (ax.figure, ax)
+    fig, ax = plt.subplots(figsize=(7.2, 4.2), layout="constrained") if ax is None else (ax.figure, ax)
     ex = f[f["status"] == "excluded"]
     ax.scatter(ex["pv"], ex["sparc"], s=4, color="0.8", label="excluded")
     if len(parts) > MAX_FIGURE_PARTICIPANTS:  # a corpus: one colour, not a legend of every participant
@@ -453,10 +464,11 @@ def plot_feature_space(
     _mark_capped(ax, f, "pv", amp_th)
     ax.set_xlabel("peak speed PV (m/s)")
     ax.set_ylabel("SPARC")
-    ax.legend(fontsize=6.5, frameon=False, ncol=2, loc="upper left", bbox_to_anchor=(1.01, 1), markerscale=2)
+    ax.legend(fontsize="small", frameon=False, ncol=2, loc="upper left", bbox_to_anchor=(1.01, 1), markerscale=2)
     return fig
 
 
+@book_figure
 def plot_sparc_vs_length(features: pd.DataFrame, fs: float, amp_th: float = DEFAULT_AMP_TH) -> plt.Figure:
     """SPARC of every valid trial against its segment length, and the share of bands ended by fc.
 
@@ -483,7 +495,7 @@ def plot_sparc_vs_length(features: pd.DataFrame, fs: float, amp_th: float = DEFA
     f = features[features["status"] != "invalid"]
     sel = (f["status"] == "selected").to_numpy()
     n = f["n"].astype(float).to_numpy()
-    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained", width_ratios=(3, 2))
+    fig, (a, b) = plt.subplots(1, 2, figsize=(WIDE, 3.8), layout="constrained", width_ratios=(1, 1))
     g = f.assign(_x=n + np.random.default_rng(0).uniform(-0.25, 0.25, len(f)))  # jitter the integers
     a.scatter(g.loc[~sel, "_x"], g.loc[~sel, "sparc"], s=4, color="0.75", label="excluded")
     a.scatter(g.loc[sel, "_x"], g.loc[sel, "sparc"], s=5, color="C0", label="selected")
@@ -492,18 +504,19 @@ def plot_sparc_vs_length(features: pd.DataFrame, fs: float, amp_th: float = DEFA
     a.set_ylabel("SPARC")
     top = a.secondary_xaxis("top", functions=(lambda x: x / fs, lambda d: d * fs))
     top.set_xlabel("duration N / fs (s)")
-    a.legend(fontsize=7, frameon=False, loc="lower left")
+    a.legend(fontsize="small", frameon=False, loc="lower left")
     if "sparc_capped" in f.columns:
         share = f.assign(_c=f["sparc_capped"].astype(float)).groupby(n)["_c"].agg(["mean", "size"])
         b.bar(share.index, share["mean"], width=0.8, color="0.5")
         for x, (m, k) in share.iterrows():
-            b.text(x, m + 0.02, str(int(k)), ha="center", va="bottom", fontsize=5.5, rotation=90)
+            b.text(x, m + 0.02, str(int(k)), ha="center", va="bottom", fontsize=8, rotation=90)
         b.set_ylim(0, 1.15)
         b.set_xlabel("segment length N (samples)")
         b.set_ylabel("share of bands ended by fc")
     return fig
 
 
+@book_figure
 def plot_feature_overview(
     features: pd.DataFrame,
     amp_th: float = DEFAULT_AMP_TH,
@@ -534,13 +547,17 @@ def plot_feature_overview(
     matplotlib.figure.Figure
         The figure; two panels (m/s; m/s against SPARC).
     """
-    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 3.8))
+    fig, (a, b) = plt.subplots(1, 2, figsize=(WIDE, 4.6), layout="constrained")
     plot_contact_speeds(features, ax=a, window=window, end=end)
     plot_feature_space(features, ax=b, amp_th=amp_th)
-    fig.tight_layout()
+    legend = b.get_legend()  # below both panels: beside the right one it would squeeze them
+    handles, labels = legend.legend_handles, [text.get_text() for text in legend.get_texts()]
+    legend.remove()
+    fig.legend(handles, labels, loc="outside lower center", ncol=4, frameon=False, fontsize="small", markerscale=2)
     return fig
 
 
+@book_figure
 def plot_estimates_vs_truth(
     features: pd.DataFrame,
     truth: pd.DataFrame,
@@ -580,7 +597,7 @@ def plot_estimates_vs_truth(
     m = features[features["status"] != "invalid"].merge(truth, on=["participant", "trial"], suffixes=("", "_true"))
     m = m.assign(duration_true=m["t_contact_true"] - m["t_onset_true"])
     rows = 1 if contact_estimates is None else 2
-    fig, axs = plt.subplots(rows, 3, figsize=(10, 3.3 * rows), squeeze=False)
+    fig, axs = plt.subplots(rows, 3, figsize=(WIDE, 3.2 * rows), squeeze=False)
     for ax, (c, name) in zip(
         axs[0], [("pv", "PV (m/s)"), ("contact_speed", "contact speed (m/s)"), ("duration", "duration (s)")]
     ):
@@ -609,7 +626,7 @@ def _contact_rows(
         b.scatter(v, x - v, s=3, color=col, alpha=0.7)
     a.plot(lim, lim, "--", color="tab:red", lw=0.8)
     a.set(xlim=lim, ylim=lim, xlabel="true contact speed (m/s)", ylabel="estimated contact speed (m/s)")
-    a.legend(fontsize=7, frameon=False, loc="upper left", markerscale=3)
+    a.legend(fontsize="small", frameon=False, loc="upper left", markerscale=3)
     b.axhline(0, color="tab:red", lw=0.8, ls="--")
     b.set(xlim=lim, xlabel="true contact speed (m/s)", ylabel="estimate - truth (m/s)")
     for ax in (a, b) if window is not None else ():
@@ -622,4 +639,4 @@ def _contact_rows(
             np.clip(x - v, bins[0], bins[-1]), bins=bins, color=col, alpha=0.6, label=f"{name}\n(RMSE {rmse:.3f} m/s)"
         )
     c.set(xlabel="estimate - truth (m/s)", ylabel="trials", ylim=(0, c.get_ylim()[1] * 1.4))  # room for the legend
-    c.legend(fontsize=7, frameon=False, loc="upper left")
+    c.legend(fontsize="small", frameon=False, loc="upper left")

@@ -11,6 +11,7 @@ from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from ..robot import LIMIT_NAMES, Assessment, JointDynamics, feasible_counts, limit_margins, verdict_range
 from ._common import unique_legend_entries
+from ._style import book_figure, grid
 from .dynamics import LIMIT_COLORS
 
 #: Unit of each kind of limit, as the axes write it.
@@ -24,6 +25,7 @@ def _plain_log_ticks(axis: plt.Axis) -> None:
     axis.set_minor_formatter(NullFormatter())
 
 
+@book_figure
 def plot_limit_sensitivity(
     by_arm: Mapping[str, Sequence[JointDynamics | Assessment]],
     kinds: Sequence[str] = LIMIT_NAMES,
@@ -70,9 +72,8 @@ def plot_limit_sensitivity(
     if not 0 < lo < hi:
         raise ValueError(f"scale_range must be positive and increasing (dimensionless), got {scale_range}")
     n = len(by_arm)
-    ncols = min(n, 2)
-    nrows = -(-n // ncols)
-    fig, axs = plt.subplots(nrows, ncols, figsize=(4.8 * ncols, 3.3 * nrows + 0.6), squeeze=False)
+    nrows, ncols, width = grid(n, 2, 4.5)
+    fig, axs = plt.subplots(nrows, ncols, figsize=(width, 3.3 * nrows + 0.6), squeeze=False)
     for ax in axs.flat[n:]:
         ax.set_visible(False)
     offsets = {k: 0.08 * (i - 1) for i, k in enumerate(LIMIT_NAMES)}

@@ -11,6 +11,7 @@ import pandas as pd
 
 from ..prototypes import PrototypeResult
 from ._common import CLUSTER_COLORS
+from ._style import WIDE, book_figure
 
 _PHASE_COLORS = ("#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e")
 
@@ -27,6 +28,7 @@ def _gaps(centres: pd.DataFrame) -> np.ndarray:
     return np.abs(np.diff(centres.sort_values("pv")["sparc"].to_numpy(dtype=float)))
 
 
+@book_figure
 def plot_phase_spread(spread: pd.DataFrame, centres: pd.DataFrame) -> plt.Figure:
     """SPARC of each trial at every sampling phase against its SPARC at the first, and the per-trial SDs
     beside the SPARC gaps between neighbouring cluster centres.
@@ -46,7 +48,7 @@ def plot_phase_spread(spread: pd.DataFrame, centres: pd.DataFrame) -> plt.Figure
         the per-trial SD over the phases (dimensionless) with the centre gaps as vertical lines.
     """
     shifts, cols = _values(spread)
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 4.2))
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(WIDE, 4.2))
     x = spread[cols[0]].to_numpy(dtype=float)
     for j, (d, c) in enumerate(zip(shifts[1:], cols[1:]), start=1):
         ax.scatter(x, spread[c], s=7, alpha=0.55, color=_PHASE_COLORS[j % len(_PHASE_COLORS)], lw=0, label=f"{d:g}")
@@ -73,6 +75,7 @@ def plot_phase_spread(spread: pd.DataFrame, centres: pd.DataFrame) -> plt.Figure
     return fig
 
 
+@book_figure
 def plot_spread_estimate(exact: pd.DataFrame, estimate: pd.DataFrame) -> plt.Figure:
     """The library's per-trial SPARC uncertainty (sub-sample shifts of the recording) against the exact
     phase spread of the same trials.
@@ -96,7 +99,7 @@ def plot_spread_estimate(exact: pd.DataFrame, estimate: pd.DataFrame) -> plt.Fig
     )
     x, y = both["sparc_sd_exact"].to_numpy(dtype=float), both["sparc_sd_est"].to_numpy(dtype=float)
     floor = 1e-4
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 4.2))
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(WIDE, 4.2))
     ax.scatter(np.maximum(x, floor), np.maximum(y, floor), s=7, alpha=0.5, color=CLUSTER_COLORS[0], lw=0)
     lim = [floor, max(x.max(), y.max()) * 1.3]
     ax.plot(lim, lim, color="0.3", lw=0.8, ls="--", label="estimate = exact")
@@ -120,6 +123,7 @@ def plot_spread_estimate(exact: pd.DataFrame, estimate: pd.DataFrame) -> plt.Fig
     return fig
 
 
+@book_figure
 def plot_estimator_spread(table: pd.DataFrame) -> plt.Figure:
     """SPARC with a plain central difference of the positions against SPARC with the book's speed.
 
@@ -134,7 +138,7 @@ def plot_estimator_spread(table: pd.DataFrame) -> plt.Figure:
     matplotlib.figure.Figure
         One panel per central difference: its SPARC (dimensionless) against the book's.
     """
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2), sharex=True, sharey=True)
+    fig, axes = plt.subplots(1, 2, figsize=(WIDE, 4.2), sharex=True, sharey=True)
     x = table["sparc"].to_numpy(dtype=float)
     titles = {
         "sparc_gradient": "numpy.gradient of the approach\n(2-point backward difference at the last sample)",
@@ -156,6 +160,7 @@ def plot_estimator_spread(table: pd.DataFrame) -> plt.Figure:
     return fig
 
 
+@book_figure
 def plot_phase_clusters(fits: Mapping[float, PrototypeResult]) -> plt.Figure:
     """The K-means centres and prototypes of the same movements sampled at several phases.
 
@@ -196,7 +201,7 @@ def plot_phase_clusters(fits: Mapping[float, PrototypeResult]) -> plt.Figure:
         )
     ax.set_xlabel("peak speed PV (m/s)")
     ax.set_ylabel("SPARC")
-    ax.legend(fontsize=7, ncol=2, loc="lower right")
+    ax.legend(fontsize="small", ncol=2, loc="lower right")
     ax.set_title(
         f"trials (phase {phases[0]:g}) by cluster; centres and prototypes at every phase (k = {ref.k})", fontsize=10
     )

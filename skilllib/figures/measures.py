@@ -12,6 +12,7 @@ from numpy.typing import ArrayLike
 from ..features import FEATURE_UNITS
 from ..prototypes import PrototypeResult
 from ._common import CLUSTER_COLORS
+from ._style import book_figure, grid
 
 
 def _axis_label(name: str) -> str:
@@ -19,6 +20,7 @@ def _axis_label(name: str) -> str:
     return f"{label} ({unit})" if unit else f"{label} (dimensionless)"
 
 
+@book_figure
 def plot_measure_clusters(
     fits: Mapping[str, PrototypeResult],
     corrected: ArrayLike,
@@ -50,8 +52,11 @@ def plot_measure_clusters(
     """
     corrected = np.asarray(corrected, dtype=bool)
     labels = dict(labels or {})
-    fig, axes = plt.subplots(1, len(fits), figsize=(5.2 * len(fits), 4.3), squeeze=False)
-    for ax, (title, fit) in zip(axes[0], fits.items()):
+    rows, cols, width = grid(len(fits), 3, 3.0 if len(fits) > 2 else 4.5)
+    fig, axes = plt.subplots(rows, cols, figsize=(width, 3.9 * rows + 0.4), squeeze=False)
+    for ax in axes.flat[len(fits) :]:
+        ax.set_visible(False)
+    for ax, (title, fit) in zip(axes.flat, fits.items()):
         d = fit.data
         if len(d) != corrected.size:
             raise ValueError(f"{title!r}: {len(d)} trials clustered but {corrected.size} corrected flags")

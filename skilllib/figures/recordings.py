@@ -10,8 +10,10 @@ import pandas as pd
 
 from ..features import NOISE_FIT_RANGE, ResidualAnalysis
 from ._common import CLUSTER_COLORS
+from ._style import SINGLE, book_figure, grid
 
 
+@book_figure
 def plot_residual_analysis(ra: ResidualAnalysis, fs: float, ax: plt.Axes | None = None) -> plt.Figure:
     """Winter's residual analysis: the RMS residual (mm) between raw and filtered positions against cut-off.
 
@@ -36,7 +38,7 @@ def plot_residual_analysis(ra: ResidualAnalysis, fs: float, ax: plt.Axes | None 
     matplotlib.figure.Figure
         The figure; residual (mm) against the filter's cut-off frequency (Hz).
     """
-    fig, ax = (ax.figure, ax) if ax is not None else plt.subplots(figsize=(6, 3.4), layout="constrained")
+    fig, ax = (ax.figure, ax) if ax is not None else plt.subplots(figsize=(SINGLE, 3.4), layout="constrained")
     mm = 1e3
     top = 4 * ra.noise_m * mm if ra.noise_m > 0 else float(np.max(ra.residual)) * mm * 1.05  # mm
     lo, hi = (r * fs / 2 for r in NOISE_FIT_RANGE)
@@ -74,6 +76,7 @@ def plot_residual_analysis(ra: ResidualAnalysis, fs: float, ax: plt.Axes | None 
     return fig
 
 
+@book_figure
 def plot_sparc_against_reference(
     features: Mapping[str, pd.DataFrame],
     reference: pd.DataFrame,
@@ -103,10 +106,13 @@ def plot_sparc_against_reference(
         The figure; SPARC (dimensionless) against reference SPARC (dimensionless).
     """
     n = len(features)
+    rows, cols, width = grid(n, 2, 4.5)
     fig, axes = plt.subplots(
-        1, n, figsize=(4.5 * n, 3.8), sharex=True, sharey=True, layout="constrained", squeeze=False
+        rows, cols, figsize=(width, 3.8 * rows), sharex=True, sharey=True, layout="constrained", squeeze=False
     )
-    for ax, (label, table) in zip(axes[0], features.items()):
+    for ax in axes.flat[n:]:
+        ax.set_visible(False)
+    for ax, (label, table) in zip(axes.flat, features.items()):
         both = table.merge(reference, on=["participant", "trial"], suffixes=("", "_ref"))
         both = both[(both["status"] != "invalid") & (both["status_ref"] != "invalid")]
         ax.scatter(both["sparc_ref"], both["sparc"], s=10, alpha=0.7, color=CLUSTER_COLORS[0])
@@ -118,5 +124,6 @@ def plot_sparc_against_reference(
         rho = both["sparc"].corr(both["sparc_ref"], method="spearman")
         ax.set_title(f"{label}: {len(both)} trials, rank correlation {rho:.2f}", fontsize=9)
         ax.set_xlabel(xlabel)
-    axes[0][0].set_ylabel(ylabel)
+    for ax in axes[:, 0]:
+        ax.set_ylabel(ylabel)
     return fig

@@ -24,6 +24,7 @@ with plt.rc_context():  # roboticstoolbox's PyPlot backend sets the ggplot style
 
 from ..robot import DEFAULT_POSE_DEG, EXP_TO_BASE, TransferResult, default_pose, joint_origins, simple6
 from ._common import CLUSTER_COLORS
+from ._style import WIDE, book_figure, grid
 
 #: Colours of the joints q1..q7 in the transfer figures.
 JOINT_COLORS = plt.get_cmap("Dark2").colors
@@ -121,6 +122,7 @@ def _label_tool_frame(ax: plt.Axes, T: np.ndarray, length: float) -> None:
         )
 
 
+@book_figure
 @_quiet_robot_plot
 def plot_robot_joints(
     robot: rtb.DHRobot | None = None,
@@ -164,6 +166,7 @@ def plot_robot_joints(
     return fig
 
 
+@book_figure
 @_quiet_robot_plot
 def plot_robot_pose(
     robot: rtb.DHRobot | None = None,
@@ -217,6 +220,7 @@ def plot_robot_pose(
     return fig
 
 
+@book_figure
 @_quiet_robot_plot
 def plot_simple6_figure() -> plt.Figure:
     """The paper's Fig. 3: (a) Simple6's joint labels, (b) its default pose, both at ``DEFAULT_POSE_DEG``.
@@ -226,7 +230,7 @@ def plot_simple6_figure() -> plt.Figure:
     matplotlib.figure.Figure
         The two panels; axes in m.
     """
-    fig = plt.figure(figsize=(10, 5))
+    fig = plt.figure(figsize=(WIDE, 4.6))
     robot, q = simple6(), default_pose()
     a = fig.add_subplot(121, projection="3d", proj_type="ortho")
     b = fig.add_subplot(122, projection="3d", proj_type="ortho")
@@ -237,6 +241,7 @@ def plot_simple6_figure() -> plt.Figure:
     return fig
 
 
+@book_figure
 def plot_joint_velocities(
     results: list[TransferResult],
     qd_limits: float | np.ndarray | None = None,
@@ -268,9 +273,8 @@ def plot_joint_velocities(
     if not results:
         raise ValueError("plot_joint_velocities needs at least one TransferResult")
     n_panels = len(results)
-    ncols = min(ncols, n_panels)
-    nrows = -(-n_panels // ncols)
-    width, height = max(3.6 * ncols, 7.5), 2.8 * nrows + 0.8
+    nrows, ncols, width = grid(n_panels, ncols, 3.0)
+    height = 2.8 * nrows + 0.8
     fig, axs = plt.subplots(nrows, ncols, figsize=(width, height), sharex=True, sharey=True, squeeze=False)
     for i, (ax, r) in enumerate(zip(axs.flat, results)):
         n = r.qd.shape[1]
@@ -327,6 +331,7 @@ def plot_joint_velocities(
     return fig
 
 
+@book_figure
 @_quiet_robot_plot
 def plot_frame_mapping(
     robot: rtb.DHRobot,
@@ -425,6 +430,7 @@ def plot_frame_mapping(
     return fig
 
 
+@book_figure
 @_quiet_robot_plot
 def plot_start_poses(
     arms: list[tuple[rtb.Robot, TransferResult]], view: tuple[float, float] = (20.0, -55.0)
@@ -448,7 +454,7 @@ def plot_start_poses(
     """
     if not arms:
         raise ValueError("plot_start_poses needs at least one (robot, TransferResult) pair")
-    fig = plt.figure(figsize=(3.6 * len(arms), 4.2))
+    fig = plt.figure(figsize=(min(WIDE, 2.9 * len(arms)), 4.2))
     for i, (robot, r) in enumerate(arms):
         ax = fig.add_subplot(1, len(arms), i + 1, projection="3d", proj_type="ortho")
         frames = robot.fkine_all(r.q0)
@@ -464,11 +470,14 @@ def plot_start_poses(
         cond = np.linalg.cond(robot.ets().jacob0(r.q0))
         deg = ", ".join(f"{v:.0f}" for v in np.rad2deg(r.q0))
         ax.set_title(f"{r.robot}\n$q_0$ = ({deg}) deg\ncond J = {cond:.1f}", fontsize="small")
-        ax.tick_params(labelsize="x-small", pad=0)
+        ax.tick_params(labelsize="small", pad=0)
+        for axis, n in ((ax.xaxis, 3), (ax.yaxis, 3), (ax.zaxis, 4)):  # fewer ticks on the narrow axes
+            axis.set_major_locator(MaxNLocator(n))
     fig.subplots_adjust(left=0.0, right=0.95, wspace=0.25)
     return fig
 
 
+@book_figure
 def plot_sparc_stretch(
     change_a: pd.DataFrame,
     change_b: pd.DataFrame,
@@ -544,6 +553,7 @@ def plot_sparc_stretch(
     return fig
 
 
+@book_figure
 def plot_time_scaled_plane(
     data: pd.DataFrame,
     centres: pd.DataFrame,

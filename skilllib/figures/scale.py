@@ -10,6 +10,8 @@ import matplotlib.pyplot as plt
 import matplotlib.ticker as mticker
 import numpy as np
 
+from ._style import book_figure
+
 #: Series of the benchmark: (mode, input) -> label and colour.
 SERIES = {
     ("inmemory", "csv"): ("in memory, one CSV file", "tab:blue"),
@@ -18,6 +20,7 @@ SERIES = {
 }
 
 
+@book_figure
 def plot_scaling(rows: Sequence[dict[str, Any]]) -> plt.Figure:
     """Wall time and peak memory against the number of trials, per series.
 
@@ -62,7 +65,7 @@ def plot_scaling(rows: Sequence[dict[str, Any]]) -> plt.Figure:
         ax.yaxis.set_major_locator(mticker.LogLocator(base=10, subs=(1, 2, 5)))
         ax.yaxis.set_major_formatter(mticker.FuncFormatter(lambda v, _: f"{v:,.0f}" if v >= 1 else f"{v:g}"))
         ax.yaxis.set_minor_formatter(mticker.NullFormatter())
-        ax.legend(fontsize=7.5, frameon=False)
+        ax.legend(fontsize="small", frameon=False)
     a.set_title("time of a whole run without figures")
     b.set_title("peak resident memory")
     fig.tight_layout()

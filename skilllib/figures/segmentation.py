@@ -31,10 +31,11 @@ from ..features import (
     velocity,
 )
 from ..recordings import Recordings, gap_runs, natural_key
+from ._style import MIN_FONT, WIDE, book_figure
 from .experiment import _plabel
 
-#: Panels of a page: rows x columns (trials).
-PAGE_ROWS, PAGE_COLS = 4, 6
+#: Panels of a page: rows x columns (trials); four columns fit the book's page width.
+PAGE_ROWS, PAGE_COLS = 6, 4
 #: Pages a run writes at most (72 trials): every invalid trial first, then an even sample of the valid ones.
 MAX_SEGMENTATION_PAGES = 3
 #: Trials a run draws at most.
@@ -44,15 +45,15 @@ STATUS_COLORS = {"selected": "#1a7f37", "excluded": "0.2", "invalid": "#c62828"}
 #: Background of an invalid trial's panel.
 INVALID_FACE = "#fdecec"
 #: Characters of a title line, and lines of the reason (the full reason is in results.json).
-LINE_CHARS, REASON_LINES = 38, 2
+LINE_CHARS, REASON_LINES = 36, 2
 ONSET_COLOR, CONTACT_COLOR, SEGMENT_COLOR, REPAIRED_COLOR = "tab:blue", "tab:purple", "tab:blue", "tab:orange"
-FONT = 7.5  #: pt, the panels' text (titles, ticks, labels) at the saved size
+FONT = MIN_FONT  #: pt, the panels' text (titles, ticks, labels, marks) at the saved size
 #: A panel's share of the page (in), and the page's margins above and below the panels (in).
-PANEL_W, PANEL_H, TOP_IN, BOTTOM_IN = 2.25, 1.9, 0.5, 0.55
+PANEL_W, PANEL_H, TOP_IN, BOTTOM_IN = 2.25, 2.0, 0.5, 0.55
 #: The narrowest page (in), the height of a line of the header or of the legend (in), the width of a
 #: legend entry (in), the header's font (pt).
 MIN_WIDTH, LINE_IN, LEGEND_ENTRY_W, HEAD_FONT = 4.5, 0.17, 1.9, 8.5
-#: Resolution of a written page (dots per inch): 7.5 pt text is 11 pixels high.
+#: Resolution of a written page (dots per inch): 8 pt text is 12 pixels high.
 PAGE_DPI = 110
 
 
@@ -203,7 +204,7 @@ def _draw_trial(
             rotation=90,
             ha="right",
             va="top",
-            fontsize=FONT - 1.5,
+            fontsize=FONT,
             color=CONTACT_COLOR,
         )
         drew["contact"] = True
@@ -242,6 +243,7 @@ def _label(p: Any, tr: Any) -> str:
     return f"{_plabel(p)} {'T' + s if s.isdigit() and not s.startswith('0') else s}"
 
 
+@book_figure
 def plot_segmentation_pages(
     recordings: Recordings,
     features: pd.DataFrame,
@@ -314,7 +316,7 @@ def plot_segmentation_pages(
         per_page = rows * cols
     if max_pages is not None:
         n_pages = min(n_pages, max_pages)
-    width = max(PANEL_W * cols, MIN_WIDTH)
+    width = min(WIDE, max(PANEL_W * cols, MIN_WIDTH))
     legend_cols = max(1, min(8, int(width // LEGEND_ENTRY_W)))
     figs = []
     for page in range(n_pages):

@@ -9,8 +9,10 @@ import numpy as np
 
 from ..smoothness import SPARC_PARAMS, SparcBands, SparcSpectrum, sparc_spectrum
 from ._common import CLUSTER_COLORS
+from ._style import SINGLE, WIDE, book_figure
 
 
+@book_figure
 def plot_sparc_spectra(
     spectra: Mapping[str, SparcSpectrum], ax: plt.Axes | None = None, fmax: float | None = None
 ) -> plt.Figure:
@@ -33,7 +35,7 @@ def plot_sparc_spectra(
     matplotlib.figure.Figure
         The figure; magnitude (dimensionless) against frequency (Hz).
     """
-    fig, ax = (ax.figure, ax) if ax is not None else plt.subplots(figsize=(5.5, 3.4))
+    fig, ax = (ax.figure, ax) if ax is not None else plt.subplots(figsize=(SINGLE, 3.6))
     first = next(iter(spectra.values()))
     fmax = fmax if fmax is not None else 1.5 * max(first.fc, max(s.cutoff for s in spectra.values()))
     for i, (label, s) in enumerate(spectra.items()):
@@ -62,6 +64,7 @@ def plot_sparc_spectra(
     return fig
 
 
+@book_figure
 def plot_speeds_and_spectra(
     speeds: Mapping[str, np.ndarray], fs: float, fmax: float | None = None, **sparc_params: float
 ) -> plt.Figure:
@@ -86,7 +89,7 @@ def plot_speeds_and_spectra(
         The figure; speed (m/s) against time (s), and the spectra against frequency (Hz).
     """
     params = {**SPARC_PARAMS, **sparc_params}
-    fig, (ax_v, ax_f) = plt.subplots(1, 2, figsize=(10, 3.4), layout="constrained")
+    fig, (ax_v, ax_f) = plt.subplots(1, 2, figsize=(WIDE, 3.4), layout="constrained")
     spectra = {}
     for i, (label, v) in enumerate(speeds.items()):
         v = np.asarray(v, dtype=float)
@@ -99,6 +102,7 @@ def plot_speeds_and_spectra(
     return fig
 
 
+@book_figure
 def plot_sparc_against(
     x: Sequence[float],
     curves: Mapping[str, Sequence[float]],
@@ -126,7 +130,7 @@ def plot_sparc_against(
     matplotlib.figure.Figure
         The figure; the curves against ``x``.
     """
-    fig, ax = (ax.figure, ax) if ax is not None else plt.subplots(figsize=(5.5, 3.4))
+    fig, ax = (ax.figure, ax) if ax is not None else plt.subplots(figsize=(SINGLE, 3.6))
     for i, (label, y) in enumerate(curves.items()):
         ax.plot(x, y, "o-", ms=3, color=CLUSTER_COLORS[i % 10], label=label)
     ax.set_xlabel(xlabel)
@@ -136,6 +140,7 @@ def plot_sparc_against(
     return fig
 
 
+@book_figure
 def plot_padded_spectra(
     speed: np.ndarray, fs: float, padlevels: Sequence[int] = (0, 2, 4), fmax: float = 3.0
 ) -> plt.Figure:
@@ -158,7 +163,7 @@ def plot_padded_spectra(
         The band of each grid as the polygon through its bins (normalised magnitude against frequency in
         Hz), labelled with its nfft and SPARC.
     """
-    fig, ax = plt.subplots(figsize=(5.5, 3.2))
+    fig, ax = plt.subplots(figsize=(SINGLE, 3.4))
     for p in padlevels:
         s = sparc_spectrum(speed, fs, padlevel=p)
         label = f"padlevel {p}: nfft {s.nfft}, SPARC {s.sparc:.3f}"
@@ -170,6 +175,7 @@ def plot_padded_spectra(
     return fig
 
 
+@book_figure
 def plot_short_segments(
     n: Sequence[int], bands: Mapping[tuple[float, float], SparcBands], amp_th: float = SPARC_PARAMS["amp_th"]
 ) -> plt.Figure:
@@ -199,7 +205,7 @@ def plot_short_segments(
     ratios = list(dict.fromkeys(r for r, _ in bands))
     fcs = sorted({fc for _, fc in bands}, reverse=True)
     styles = ["-", "--", "-.", ":"]
-    fig, (ax, ax_end) = plt.subplots(1, 2, figsize=(10, 3.6), layout="constrained")
+    fig, (ax, ax_end) = plt.subplots(1, 2, figsize=(WIDE, 4.2), layout="constrained")
     for (r, fc), b in bands.items():
         color, ls = f"C{ratios.index(r) % 10}", styles[fcs.index(fc) % len(styles)]
         for a, y in ((ax, np.asarray(b.sparc)), (ax_end, np.asarray(b.band_end_hz))):
@@ -212,5 +218,59 @@ def plot_short_segments(
     ax.set_ylabel("SPARC")
     ax_end.set_xlabel("segment length n (samples at 60 Hz)")
     ax_end.set_ylabel("band end (Hz)")
-    ax_end.legend(fontsize=7, frameon=False, ncol=2)
+    handles, labels = ax_end.get_legend_handles_labels()  # below the panels: inside, it would hide lines
+    fig.legend(handles, labels, loc="outside lower center", ncol=3, fontsize="small", frameon=False)
+    return fig
+
+
+@book_figure
+def plot_speed_profiles(speeds: Mapping[str, np.ndarray], fs: float, ax: plt.Axes | None = None) -> plt.Figure:
+    """Speed profiles against time, one line of dots per profile (one dot per sample).
+
+    Parameters
+    ----------
+    speeds : mapping of str to numpy.ndarray
+        Label (text) -> speed profile (m/s).
+    fs : float
+        The sampling rate (Hz).
+    ax : matplotlib.axes.Axes or None
+        The axes to draw into; None: a new figure.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure; speed (m/s, from 0 to 1.15 times the highest peak) against time (s).
+    """
+    fig, ax = (ax.figure, ax) if ax is not None else plt.subplots(figsize=(SINGLE, 3.4), layout="constrained")
+    top = 0.0
+    for label, v in speeds.items():
+        v = np.asarray(v, dtype=float)
+        ax.plot(np.arange(v.size) / fs, v, ".-", ms=3, label=label)
+        top = max(top, float(np.nanmax(v)))
+    ax.set(xlabel="time t (s)", ylabel="speed v (m/s)", ylim=(0, 1.15 * top))
+    ax.legend(frameon=False, loc="upper right")
+    return fig
+
+
+@book_figure
+def plot_spectra_side_by_side(spectra: Mapping[str, SparcSpectrum], fmax: float | None = None) -> plt.Figure:
+    """Each spectrum in its own panel, side by side on a shared magnitude axis (:func:`plot_sparc_spectra`).
+
+    Parameters
+    ----------
+    spectra : mapping of str to SparcSpectrum
+        Label (text) -> the :func:`skilllib.smoothness.sparc_spectrum` of a profile (frequencies in Hz).
+    fmax : float or None
+        Highest frequency shown (Hz); None: as :func:`plot_sparc_spectra`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One panel per spectrum, magnitude (dimensionless) against frequency (Hz).
+    """
+    fig, axes = plt.subplots(1, len(spectra), figsize=(WIDE, 3.4), sharey=True, layout="constrained", squeeze=False)
+    for ax, (label, s) in zip(axes.flat, spectra.items()):
+        plot_sparc_spectra({label: s}, ax=ax, fmax=fmax)
+    for ax in axes.flat[1:]:
+        ax.set_ylabel("")
     return fig

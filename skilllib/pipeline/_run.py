@@ -854,9 +854,9 @@ def _write_figures(run_: PipelineRun, out: Path, robot) -> list[str]:
 
     def keep(fig, name: str, note: str = "", save: Callable | None = None) -> None:
         if run_.results["dataset"]["synthetic"]:
-            fig.text(0.995, 0.003, SYNTHETIC_NOTE, ha="right", va="bottom", fontsize=7, color="0.35")
+            fig.text(0.995, 0.003, SYNTHETIC_NOTE, ha="right", va="bottom", fontsize=8, color="0.35")
         if note:
-            fig.text(0.005, 0.003, f"Shown: {note}.", ha="left", va="bottom", fontsize=7, color="0.35")
+            fig.text(0.005, 0.003, f"Shown: {note}.", ha="left", va="bottom", fontsize=8, color="0.35")
         written.extend(p.name for p in (save or fg.save)(fig, out, name))
         fg.plt.close(fig)
 

@@ -5,7 +5,7 @@
 (function () {
   'use strict';
   var root = document.documentElement;
-  var WIDE = window.matchMedia('(min-width: 75rem)'); // the outline beside the text (theme.css)
+  var WIDE = window.matchMedia('(min-width: 85.01rem)'); // the outline beside the text (theme.css)
 
   // ---- light / dark ------------------------------------------------------------------------------
   // No stored choice: the system setting (prefers-color-scheme, in theme.css). The button stores the
@@ -130,6 +130,113 @@
     window.addEventListener('resize', mark);
     mark();
   }
+
+  // ---- the scroll cue --------------------------------------------------------------------------------
+  // A box that scrolls sideways (a long line of code or output, a wide table, a figure in its frame on a
+  // phone) gets data-overflow = "right", "left" or "both": the edges where something is hidden, which
+  // theme.css fades out. Updated when the box is scrolled or changes size.
+  var SCROLLERS = 'main pre, main .table-wrap, main .output.html, main .image-frame, main .math-body';
+  function markOverflow(el) {
+    var hidden = el.scrollWidth - el.clientWidth;
+    var state = '';
+    if (hidden > 1) {
+      var left = el.scrollLeft > 1, right = el.scrollLeft < hidden - 1;
+      state = left && right ? 'both' : left ? 'left' : right ? 'right' : '';
+    }
+    if (state) el.setAttribute('data-overflow', state);
+    else if (el.hasAttribute('data-overflow')) el.removeAttribute('data-overflow');
+  }
+  var scrollers = Array.prototype.slice.call(document.querySelectorAll(SCROLLERS));
+  function markAll() { scrollers.forEach(markOverflow); }
+  markAll();
+  document.addEventListener('scroll', function (e) {
+    if (e.target && e.target.matches && e.target.matches(SCROLLERS)) markOverflow(e.target);
+  }, { passive: true, capture: true });
+  if (window.ResizeObserver) {
+    var sizes = new ResizeObserver(function (entries) { entries.forEach(function (en) { markOverflow(en.target); }); });
+    scrollers.forEach(function (el) { sizes.observe(el); });
+  } else {
+    window.addEventListener('resize', markAll);
+  }
+  window.addEventListener('load', markAll); // images and fonts change widths
+
+  // ---- figures at full size -------------------------------------------------------------------------
+  // A click on a figure (or Enter / Space on it) shows it alone over the page: at its full resolution,
+  // fitted to the window on desktop, at its drawn size on a phone (scrolled and pinch-zoomed there).
+  // Escape, a click or the close button closes it and gives the focus back to the figure.
+  var PHONE = window.matchMedia('(max-width: 40rem)');
+  var overlay = null, opener = null;
+  function closeFigure() {
+    if (!overlay) return;
+    overlay.remove();
+    overlay = null;
+    document.body.classList.remove('overlay-open');
+    if (opener) opener.focus();
+    opener = null;
+  }
+  function openFigure(img) {
+    closeFigure();
+    opener = img;
+    overlay = document.createElement('div');
+    overlay.className = 'figure-overlay';
+    overlay.setAttribute('role', 'dialog');
+    overlay.setAttribute('aria-modal', 'true');
+    overlay.setAttribute('aria-label', 'The figure at full size' + (img.alt ? ': ' + img.alt.slice(0, 120) : ''));
+    var big = document.createElement('img');
+    big.src = img.currentSrc || img.src;
+    big.alt = img.alt;
+    // retina PNGs: naturalWidth device pixels = naturalWidth / 2 CSS px as drawn
+    var drawn = img.getAttribute('width') ? Number(img.getAttribute('width')) : img.naturalWidth;
+    var full = img.naturalWidth || drawn;
+    var room = window.innerWidth - 32, roomY = window.innerHeight - 32;
+    var w = PHONE.matches ? drawn : Math.max(Math.min(full, room, roomY * full / (img.naturalHeight || full)), Math.min(drawn, room));
+    big.style.width = Math.round(w) + 'px';
+    var close = document.createElement('button');
+    close.type = 'button';
+    close.setAttribute('aria-label', 'Close the figure');
+    close.textContent = '×';
+    overlay.appendChild(big);
+    overlay.appendChild(close);
+    overlay.addEventListener('click', function (e) {
+      // on a phone, a tap on the image is for panning and zooming; elsewhere a click closes
+      if (e.target === big && PHONE.matches) return;
+      closeFigure();
+    });
+    overlay.addEventListener('keydown', function (e) { if (e.key === 'Tab') { e.preventDefault(); close.focus(); } });
+    document.body.appendChild(overlay);
+    document.body.classList.add('overlay-open');
+    close.focus();
+  }
+  Array.prototype.forEach.call(document.querySelectorAll('main figure img, main img.output'), function (img) {
+    if (img.closest('a')) return;
+    img.classList.add('zoomable');
+    img.tabIndex = 0;
+    img.setAttribute('role', 'button');
+    img.setAttribute('aria-label', 'Open the figure at full size' + (img.alt ? ': ' + img.alt.slice(0, 100) : ''));
+  });
+  document.addEventListener('click', function (e) {
+    var img = e.target.closest && e.target.closest('img.zoomable');
+    if (img) openFigure(img);
+  });
+  document.addEventListener('keydown', function (e) {
+    if (e.key === 'Escape' && overlay) { closeFigure(); return; }
+    var img = e.target.closest && e.target.closest('img.zoomable');
+    if (img && (e.key === 'Enter' || e.key === ' ')) { e.preventDefault(); openFigure(img); }
+  });
+
+  // ---- print: folded code and outputs print open ----------------------------------------------------
+  var PRINT = window.matchMedia('print');
+  var opened = [];
+  function openForPrint() {
+    Array.prototype.forEach.call(document.querySelectorAll('main details:not([open])'), function (d) { d.open = true; opened.push(d); });
+  }
+  function restoreAfterPrint() {
+    opened.forEach(function (d) { d.open = false; });
+    opened = [];
+  }
+  window.addEventListener('beforeprint', openForPrint);
+  window.addEventListener('afterprint', restoreAfterPrint);
+  if (PRINT.addEventListener) PRINT.addEventListener('change', function (e) { if (e.matches) openForPrint(); else restoreAfterPrint(); });
 
   // ---- hover previews ----------------------------------------------------------------------------
   // A cross-reference shows its target (figure, equation, section) from the <template data-xref> the
