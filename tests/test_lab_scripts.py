@@ -133,3 +133,9 @@ def _ascii(s: str) -> str:
     import unicodedata
 
     return "".join(c for c in unicodedata.normalize("NFD", s) if not unicodedata.combining(c))
+
+
+def test_every_chapter_carries_its_numbering():
+    """The repository's chapters number their equations and figures as the site does, in JupyterLab too:
+    a new chapter (or a renumbered toc) fails here until scripts/notebook_front_matter.py is run."""
+    assert nfm.main(["--project", str(ROOT), "--check"]) == 0
