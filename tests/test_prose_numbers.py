@@ -146,9 +146,13 @@ def _inline_text(children) -> str:
     return "".join(out)
 
 
+_FRONT_MATTER = re.compile(r"\A---[ \t]*\n.*?\n---[ \t]*(\n|\Z)", re.S)
+
+
 def _paragraphs(markdown: str) -> list[str]:
-    """The prose of a markdown text, one string per paragraph, heading, table cell or list item."""
-    markdown = _LABEL.sub("", markdown)
+    """The prose of a markdown text, one string per paragraph, heading, table cell or list item; a
+    leading front matter block (a chapter's ``numbering``) is not prose."""
+    markdown = _FRONT_MATTER.sub("", _LABEL.sub("", markdown), count=1)
     out: list[str] = []
     row: list[str] | None = None  # the cells of a table row, read as one sentence
     for tok in _MD.parse(markdown):
@@ -439,6 +443,9 @@ def test_what_is_not_a_stated_number():
         ("0.5", 0.5, 1),
     ]
     assert found[0].unit == "trials" and found[0].sentence.startswith("The note states")
+    # a chapter's front matter (its numbering) is not prose; a rule later in the text is not front matter
+    md = '---\nnumbering:\n  enumerator: "8.%s"\n---\n# Title\n\nWe saw 12 trials.\n\n---\n\nThen 13.\n'
+    assert [n.text for n in prose_numbers(md)] == ["12", "13"]
 
 
 def test_a_constant_with_a_unit_covers_only_that_unit():
