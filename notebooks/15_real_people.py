@@ -173,10 +173,7 @@ assert len(repaired) == 1 and repaired.repairs.str.contains("stale").all(), (
 
 # %%
 TASK_FILE = REAL / "ue-adl-forward-reach.toml"
-# a line longer than the page is shown wrapped, its continuation marked ↪
-for line in TASK_FILE.read_text().splitlines():
-    long = len(line) > 88
-    print(textwrap.fill(line, 88, subsequent_indent="    ↪ ") if long else line)
+print(TASK_FILE.read_text())
 
 # %% [markdown]
 # One command then runs the paper's method on the 160 reaches:
